@@ -1,0 +1,17 @@
+#pragma once
+
+// The subcommands of the `kautham` console program. Each adds itself to the CLI11 app and
+// sets `exitCode` when it runs: 0 success or solved, 1 ran but not solved, 2 bad input.
+
+#include <CLI/CLI.hpp>
+
+namespace kautham::apps {
+
+void addPlanCommand(CLI::App& app, int& exitCode);
+void addPlannersCommand(CLI::App& app, int& exitCode);
+
+constexpr int kExitSolved = 0;
+constexpr int kExitNotSolved = 1;
+constexpr int kExitBadInput = 2;
+
+}  // namespace kautham::apps

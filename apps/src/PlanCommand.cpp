@@ -1,0 +1,152 @@
+// `kautham plan PROBLEM`: load, plan, replay to verify, print a summary, write the plan file.
+
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <iostream>
+
+#include <fmt/format.h>
+
+#include "Commands.h"
+#include "PlanFile.h"
+#include "kautham/core/ProblemLoader.h"
+
+namespace kautham::apps {
+
+namespace {
+
+std::atomic<bool> interrupted{false};
+
+struct PlanOptions {
+  std::string problem;
+  std::optional<std::string> planner;
+  std::optional<double> time;
+  std::uint32_t seed = 1;
+  std::vector<std::string> sets;
+  std::string output;
+  std::vector<std::string> modelDirs;
+  std::size_t query = 0;
+};
+
+std::vector<planners::ParameterOverride> parseOverrides(const PlanOptions& options) {
+  std::vector<planners::ParameterOverride> overrides;
+  for (const std::string& text : options.sets) {
+    const auto equals = text.find('=');
+    if (equals == std::string::npos || equals == 0)
+      throw std::invalid_argument("--set expects NAME=VALUE, got '" + text + "'");
+    overrides.emplace_back(text.substr(0, equals), text.substr(equals + 1));
+  }
+  if (options.time) overrides.emplace_back("time_limit", fmt::format("{}", *options.time));
+  return overrides;
+}
+
+/// A one-line progress display, only on a terminal (pipes and CI logs stay clean).
+planners::SolveHooks terminalHooks() {
+  planners::SolveHooks hooks;
+  hooks.stop = [] { return interrupted.load(); };
+  if (isatty(STDERR_FILENO))
+    hooks.progress = [](const planners::Progress& p) {
+      fmt::print(stderr, "\r  planning {:6.1f} s  {:>9} propagations  {:>10} physics steps", p.elapsed,
+                 p.propagations, p.physicsSteps);
+      std::fflush(stderr);
+    };
+  return hooks;
+}
+
+void printSummary(const physics::PlanningContext& context, const planners::PlanRequest& request,
+                  const planners::PlanOutcome& outcome, const physics::ReplayResult& replay) {
+  const auto& stats = outcome.statistics;
+  fmt::print("problem   {} ({}), query {}\n", context.problem().name,
+             context.problem().file.string(), context.query().name);
+  fmt::print("planner   {}, seed {}, time limit {} s\n", request.planner, request.seed,
+             request.timeLimit());
+  fmt::print("solved    {} in {:.2f} s\n",
+             outcome.solved ? "yes" : (outcome.approximate ? "no (approximate solution)" : "no"),
+             stats.planningTime);
+  fmt::print("tree      {} states, {} propagations, {} physics steps ({:.0f} steps/s)\n",
+             stats.treeStates, stats.propagations, stats.physicsSteps,
+             stats.physicsSteps / std::max(stats.planningTime, 1e-9));
+  if (outcome.controls.empty()) return;
+  fmt::print("plan      {} controls, {:.2f} s of motion\n", outcome.controls.size(),
+             replay.frames.back().time);
+  std::string moved;
+  for (const auto& m : physics::movedObjects(context.layout(), replay))
+    moved += fmt::format(" {} {:.1f} cm,", m.name, 100.0 * m.distance);
+  if (!moved.empty()) moved.pop_back();
+  fmt::print("replay    {}, goal distance {:.1f} cm, {}\n",
+             replay.reachedGoal ? "reaches the goal" : "does NOT reach the goal",
+             100.0 * replay.finalGoalDistance,
+             replay.firstViolation == physics::Violation::None
+                 ? "no constraint violated"
+                 : std::string("violation: ") + physics::toString(replay.firstViolation));
+  fmt::print("moved    {}\n", moved.empty() ? " nothing" : moved);
+}
+
+int runPlan(const PlanOptions& options) {
+  std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
+  const core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  if (options.query >= problem.queries.size())
+    throw std::invalid_argument(fmt::format("--query {}: the problem has {} queries",
+                                            options.query, problem.queries.size()));
+  const planners::PlanRequest request = planners::makeRequest(
+      problem, options.planner, parseOverrides(options), planners::seedRandomness(options.seed));
+
+  physics::PlanningContext context(problem, options.query, request.propagation());
+  if (context.startViolation() != physics::Violation::None)
+    throw core::InputError(problem.queries[options.query].where,
+                           std::string("the start state is invalid: ") +
+                               physics::toString(context.startViolation()));
+
+  std::signal(SIGINT, [](int) { interrupted = true; });
+  const planners::PlanOutcome outcome = planners::solve(context, request, terminalHooks());
+  std::signal(SIGINT, SIG_DFL);
+  if (isatty(STDERR_FILENO)) fmt::print(stderr, "\r{:80}\r", "");
+
+  const physics::ReplayResult replay = physics::replay(context, outcome.controls);
+  printSummary(context, request, outcome, replay);
+  if (!options.output.empty()) {
+    writeJsonFile(options.output, planToJson(context, request, outcome, replay));
+    fmt::print("wrote     {}\n", options.output);
+  }
+  if (outcome.solved && !replay.reachedGoal)
+    fmt::print(stderr, "warning: the replayed plan does not reach the goal; please report this\n");
+  return outcome.solved && replay.reachedGoal ? kExitSolved : kExitNotSolved;
+}
+
+}  // namespace
+
+void addPlanCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<PlanOptions>();
+  CLI::App* command = app.add_subcommand("plan", "Plan a query of a problem file");
+  command->add_option("problem", options->problem, "problem file (XML)")->required();
+  command->add_option("--planner", options->planner, "planner name (see `kautham planners`)");
+  command->add_option("--time", options->time, "planning time limit in seconds")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--seed", options->seed, "random seed (0: pick one)")->capture_default_str();
+  command
+      ->add_option("--set", options->sets,
+                   "set a planner parameter, NAME=VALUE (repeatable; see `kautham planners`)")
+      ->allow_extra_args(false);
+  command->add_option("-o,--output", options->output, "write the plan to this JSON file");
+  command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->allow_extra_args(false);
+  command->add_option("--query", options->query, "index of the query to plan")->capture_default_str();
+  command->callback([options, &exitCode] {
+    try {
+      exitCode = runPlan(*options);
+    } catch (const core::InputError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitBadInput;
+    } catch (const std::invalid_argument& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitBadInput;
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitNotSolved;
+    }
+  });
+}
+
+}  // namespace kautham::apps

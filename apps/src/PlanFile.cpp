@@ -1,0 +1,117 @@
+#include "PlanFile.h"
+
+#include <fstream>
+#include <stdexcept>
+
+#include <ompl/config.h>
+
+#include "kautham/core/Version.h"
+#include "kautham/physics/OdeLibrary.h"
+
+namespace kautham::apps {
+
+namespace {
+
+using nlohmann::json;
+using physics::WorldLayout;
+
+const char* roleName(physics::BodyRole role) {
+  switch (role) {
+    case physics::BodyRole::Robot:
+      return "robot";
+    case physics::BodyRole::Movable:
+      return "movable";
+    case physics::BodyRole::Target:
+      return "target";
+  }
+  return "?";
+}
+
+json poseArray(const double* state, std::size_t body) {
+  const double* s = state + body * WorldLayout::kBodyStateSize;
+  return json::array({s[0], s[1], s[2], s[3], s[4], s[5], s[6]});
+}
+
+json trajectoryJson(const WorldLayout& layout, const physics::ReplayResult& replay) {
+  json frames = json::array();
+  for (const physics::ReplayFrame& frame : replay.frames) {
+    json poses = json::array();
+    for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+      poses.push_back(poseArray(frame.state.data(), b));
+    frames.push_back({{"t", frame.time}, {"poses", poses}});
+  }
+  return frames;
+}
+
+json controlsJson(const planners::PlanOutcome& outcome, double stepSize) {
+  json controls = json::array();
+  for (const physics::ControlStep& c : outcome.controls)
+    controls.push_back(
+        {{"velocities", c.velocities}, {"steps", c.steps}, {"duration", c.steps * stepSize}});
+  return controls;
+}
+
+json bodiesJson(const WorldLayout& layout) {
+  json bodies = json::array();
+  for (const physics::BodyInfo& b : layout.bodies)
+    bodies.push_back({{"name", b.name}, {"role", roleName(b.role)}});
+  return bodies;
+}
+
+}  // namespace
+
+json planToJson(const physics::PlanningContext& context, const planners::PlanRequest& request,
+                const planners::PlanOutcome& outcome, const physics::ReplayResult& replay) {
+  const WorldLayout& layout = context.layout();
+  const double stepSize = context.spaceInformation()->getPropagationStepSize();
+  json moved = json::array();
+  for (const physics::ObjectDisplacement& m : physics::movedObjects(layout, replay))
+    moved.push_back({{"name", m.name}, {"distance", m.distance}});
+
+  return {
+      {"format", "kautham-plan"},
+      {"format_version", kPlanFormatVersion},
+      {"versions",
+       {{"kautham", core::version()}, {"ompl", OMPL_VERSION}, {"ode", physics::OdeLibrary::version()}}},
+      {"problem",
+       {{"name", context.problem().name},
+        {"file", context.problem().file.string()},
+        {"query", context.query().name}}},
+      {"planner",
+       {{"name", request.planner},
+        {"parameters", request.parameters.values()},
+        {"common", request.common.values()}}},
+      {"seed", request.seed},
+      {"result",
+       {{"solved", outcome.solved},
+        {"approximate", outcome.approximate},
+        {"goal_distance", outcome.goalDistance},
+        {"replay",
+         {{"reached_goal", replay.reachedGoal},
+          {"violation", physics::toString(replay.firstViolation)},
+          {"final_goal_distance", replay.finalGoalDistance},
+          {"moved_objects", moved}}}}},
+      {"statistics",
+       {{"tree_states", outcome.statistics.treeStates},
+        {"propagations", outcome.statistics.propagations},
+        {"physics_steps", outcome.statistics.physicsSteps}}},
+      {"timing", {{"planning_time", outcome.statistics.planningTime}}},
+      {"propagation_step_size", stepSize},
+      {"controls", controlsJson(outcome, stepSize)},
+      {"bodies", bodiesJson(layout)},
+      {"frames", trajectoryJson(layout, replay)},
+  };
+}
+
+void writeJsonFile(const std::filesystem::path& file, const nlohmann::json& json) {
+  const std::filesystem::path temporary = file.string() + ".tmp";
+  {
+    std::ofstream out(temporary);
+    if (!out) throw std::runtime_error("cannot write '" + temporary.string() + "'");
+    out << json.dump(1) << '\n';
+    if (!out) throw std::runtime_error("failed writing '" + temporary.string() + "'");
+  }
+  std::filesystem::rename(temporary, file);
+}
+
+}  // namespace kautham::apps

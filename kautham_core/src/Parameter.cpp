@@ -1,0 +1,100 @@
+#include "kautham/core/Parameter.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace kautham::core {
+
+bool ParameterSpec::answersTo(const std::string& someName) const {
+  return someName == name || std::find(aliases.begin(), aliases.end(), someName) != aliases.end();
+}
+
+std::string ParameterSpec::formatValue(double value) const {
+  if (type == ParameterType::Boolean) return value != 0.0 ? "true" : "false";
+  if (type == ParameterType::Integer) return std::to_string(static_cast<long long>(value));
+  std::ostringstream text;
+  text.precision(10);
+  text << value;
+  return text.str();
+}
+
+ParameterSet::ParameterSet(std::vector<ParameterSpec> specs) : specs_(std::move(specs)) {
+  for (const ParameterSpec& s : specs_) values_[s.name] = s.defaultValue;
+}
+
+bool ParameterSet::has(const std::string& name) const {
+  return std::any_of(specs_.begin(), specs_.end(),
+                     [&](const ParameterSpec& s) { return s.answersTo(name); });
+}
+
+const ParameterSpec& ParameterSet::spec(const std::string& name) const {
+  for (const ParameterSpec& s : specs_)
+    if (s.answersTo(name)) return s;
+  throw std::invalid_argument("unknown parameter '" + name + "'; known: " + listOfNames());
+}
+
+std::string ParameterSet::listOfNames() const {
+  std::string list;
+  for (const ParameterSpec& s : specs_) list += (list.empty() ? "" : ", ") + s.name;
+  return list.empty() ? "none" : list;
+}
+
+namespace {
+
+std::string lowercase(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+double parseValue(const ParameterSpec& spec, const std::string& text) {
+  const std::string word = lowercase(text);
+  if (spec.type == ParameterType::Boolean) {
+    if (word == "true" || word == "1" || word == "yes" || word == "on") return 1.0;
+    if (word == "false" || word == "0" || word == "no" || word == "off") return 0.0;
+    throw std::invalid_argument("parameter '" + spec.name + "' expects true or false, got '" +
+                                text + "'");
+  }
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(value))
+    throw std::invalid_argument("parameter '" + spec.name + "' expects a number, got '" + text +
+                                "'");
+  if (spec.type == ParameterType::Integer && value != std::floor(value))
+    throw std::invalid_argument("parameter '" + spec.name + "' expects a whole number, got '" +
+                                text + "'");
+  if (value < spec.min || value > spec.max)
+    throw std::invalid_argument("parameter '" + spec.name + "' must be in [" +
+                                spec.formatValue(spec.min) + ", " + spec.formatValue(spec.max) +
+                                "], got " + text);
+  return value;
+}
+
+}  // namespace
+
+void ParameterSet::set(const std::string& name, const std::string& text) {
+  const ParameterSpec& s = spec(name);
+  values_[s.name] = parseValue(s, text);
+}
+
+double ParameterSet::real(const std::string& name) const { return values_.at(spec(name).name); }
+
+int ParameterSet::integer(const std::string& name) const {
+  return static_cast<int>(values_.at(spec(name).name));
+}
+
+bool ParameterSet::boolean(const std::string& name) const {
+  return values_.at(spec(name).name) != 0.0;
+}
+
+std::map<std::string, std::string> ParameterSet::values() const {
+  std::map<std::string, std::string> text;
+  for (const ParameterSpec& s : specs_) text[s.name] = s.formatValue(values_.at(s.name));
+  return text;
+}
+
+}  // namespace kautham::core

@@ -1,0 +1,80 @@
+#include "kautham/core/Problem.h"
+
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace kautham::core {
+
+const char* toString(ObjectRole role) {
+  switch (role) {
+    case ObjectRole::Fixed:
+      return "fixed";
+    case ObjectRole::Movable:
+      return "movable";
+    case ObjectRole::Target:
+      return "target";
+  }
+  return "?";
+}
+
+const ObjectInstance& Problem::target() const {
+  for (const ObjectInstance& object : objects)
+    if (object.role == ObjectRole::Target) return object;
+  throw std::logic_error("problem has no target object");
+}
+
+std::optional<int> Problem::findObject(const std::string& objectName) const {
+  for (std::size_t i = 0; i < objects.size(); ++i)
+    if (objects[i].name == objectName) return static_cast<int>(i);
+  return std::nullopt;
+}
+
+Eigen::Vector3d Problem::goalPosition(const GoalRegion& goal) const {
+  if (goal.relativeTo.empty()) return goal.offset;
+  return objects.at(*findObject(goal.relativeTo)).home.isometry() * goal.offset;
+}
+
+std::vector<double> Problem::initialJointValues(const Query& query) const {
+  const std::vector<int> movable = robot.model.movableJoints();
+  if (query.init.empty()) return robot.initialJoints;
+  std::vector<double> values(movable.size());
+  for (std::size_t i = 0; i < movable.size(); ++i) {
+    const Joint& joint = robot.model.joints[movable[i]];
+    const double normalized = std::clamp(query.init.at(i), 0.0, 1.0);
+    values[i] = joint.lower + normalized * (joint.upper - joint.lower);
+  }
+  return values;
+}
+
+std::optional<int> Problem::supportObject() const {
+  if (!interaction.supportObject.empty()) return findObject(interaction.supportObject);
+  const Eigen::Vector3d below = target().home.position;
+  std::optional<int> best;
+  double bestTop = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (objects[i].role != ObjectRole::Fixed) continue;
+    const Eigen::AlignedBox3d box = boundsAtHome(objects[i]);
+    const bool under = box.min().x() <= below.x() && below.x() <= box.max().x() &&
+                       box.min().y() <= below.y() && below.y() <= box.max().y() &&
+                       box.max().z() <= below.z();
+    if (under && box.max().z() > bestTop) {
+      bestTop = box.max().z();
+      best = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+Eigen::AlignedBox3d boundsAtHome(const ModelInstance& instance) {
+  const KinematicModel& model = instance.model;
+  const std::vector<Eigen::Isometry3d> poses = model.linkPoses(
+      instance.home.isometry(), std::vector<double>(model.movableJoints().size(), 0.0));
+  Eigen::AlignedBox3d box;  // empty
+  for (std::size_t i = 0; i < model.links.size(); ++i)
+    for (const CollisionShape& c : model.links[i].collisions)
+      box.extend(boundingBox(c.shape, poses[i] * c.origin));
+  return box;
+}
+
+}  // namespace kautham::core

@@ -1,0 +1,355 @@
+#include "kautham/core/ProblemLoader.h"
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+
+#include "XmlReader.h"
+#include "kautham/core/UrdfLoader.h"
+
+namespace kautham::core {
+
+namespace {
+
+using tinyxml2::XMLElement;
+namespace fs = std::filesystem;
+
+/// Kautham's physics parameter names, accepted inside <Parameters> for compatibility:
+/// they set the <Physics> block rather than the planner.
+bool applyKauthamPhysicsParameter(const PlannerParameter& p, PhysicsSettings& physics,
+                                  const XmlReader& xml, const XMLElement& element) {
+  auto number = [&] { return xml.numbersInText(element).at(0); };
+  if (p.name == "Max Contacts")
+    physics.maxContacts = static_cast<int>(number());
+  else if (p.name == "Error Reduction Parameter")
+    physics.erp = number();
+  else if (p.name == "Constraint Force Mixing")
+    physics.cfm = number();
+  else
+    return false;
+  return true;
+}
+
+class ProblemReader {
+ public:
+  ProblemReader(const fs::path& file, std::vector<fs::path> modelDirs)
+      : xml_(file), modelDirs_(std::move(modelDirs)) {
+    const fs::path folder = fs::absolute(file).parent_path();
+    // The problem's folder, this repository's layout (problems/ beside models/), Kautham's
+    // layout (demos/<set>/ two levels under models/), then the user's folders.
+    modelDirs_.insert(modelDirs_.begin(), {folder, folder.parent_path() / "models",
+                                           folder.parent_path().parent_path() / "models"});
+  }
+
+  Problem read() {
+    const XMLElement& root = xml_.root("Problem");
+    xml_.allowAttributes(root, {"name"});
+    problem_.file = xml_.file();
+    problem_.name = xml_.optionalText(root, "name").value_or(xml_.file().stem().string());
+    for (const XMLElement* e = root.FirstChildElement(); e; e = e->NextSiblingElement())
+      readTopLevel(*e);
+    if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
+    if (!plannerElement_) xml_.fail(root, "the problem has no <Planner> block");
+    check(root);
+    return std::move(problem_);
+  }
+
+ private:
+  void readTopLevel(const XMLElement& e) {
+    const std::string tag = e.Name();
+    if (tag == "Robot")
+      readRobot(e);
+    else if (tag == "Obstacle")
+      readObstacle(e);
+    else if (tag == "Physics")
+      readPhysics(e);
+    else if (tag == "Interaction")
+      readInteraction(e);
+    else if (tag == "Workspace")
+      readWorkspace(e);
+    else if (tag == "Planner")
+      readPlanner(e);
+    else if (tag == "Controls")
+      xml_.fail(e, "<Controls> (Kautham control sets) is not supported yet: remove it to get one "
+                   "control per movable joint");
+    else
+      xml_.fail(e, "unexpected element <" + tag +
+                       ">; expected Robot, Obstacle, Physics, Interaction, Workspace or Planner");
+  }
+
+  fs::path findModel(const XMLElement& e, const std::string& relative) const {
+    if (fs::path(relative).is_absolute()) return relative;
+    for (const fs::path& dir : modelDirs_) {
+      std::error_code ignored;
+      if (fs::is_regular_file(dir / relative, ignored))
+        return fs::weakly_canonical(dir / relative);
+    }
+    std::string searched;
+    for (const fs::path& dir : modelDirs_) searched += "\n  " + (dir / relative).string();
+    xml_.fail(e, "model file '" + relative + "' not found; searched:" + searched +
+                     "\n(add a folder with --model-dir)");
+  }
+
+  Pose readHome(const XMLElement& parent) const {
+    const XMLElement* home = parent.FirstChildElement("Home");
+    if (!home) return {};
+    xml_.allowAttributes(*home, {"X", "Y", "Z", "WX", "WY", "WZ", "TH"});
+    const Eigen::Vector3d position(xml_.number(*home, "X", 0), xml_.number(*home, "Y", 0),
+                                   xml_.number(*home, "Z", 0));
+    const Eigen::Vector3d axis(xml_.number(*home, "WX", 0), xml_.number(*home, "WY", 0),
+                               xml_.number(*home, "WZ", 1));
+    return Pose::fromAxisAngle(position, axis, xml_.number(*home, "TH", 0));
+  }
+
+  void readModel(const XMLElement& e, const char* fileAttribute, ModelInstance& instance) {
+    const std::string relative = xml_.requiredText(e, fileAttribute);
+    instance.where = xml_.at(e);
+    instance.urdf = findModel(e, relative);
+    instance.model = loadUrdf(instance.urdf, xml_.number(e, "scale", 1.0), instance.where);
+    instance.home = readHome(e);
+    instance.name = xml_.optionalText(e, "name").value_or(instance.model.name);
+    if (const XMLElement* rename = e.FirstChildElement("KauthamName"))
+      instance.name = xml_.requiredText(*rename, "name");
+    for (const XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string tag = c->Name();
+      if (tag == "Limits")
+        xml_.fail(*c, "<Limits> (mobile-base translation) is not supported yet: give the base "
+                      "prismatic joints in the URDF instead");
+      if (tag != "Home" && tag != "KauthamName" && tag != "Uncertainty")
+        xml_.fail(*c, "unexpected <" + tag + "> inside <" + e.Name() +
+                          ">; expected Home, KauthamName or Uncertainty");
+    }
+  }
+
+  void readRobot(const XMLElement& e) {
+    if (robotElement_) xml_.fail(e, "only one <Robot> is supported per problem");
+    robotElement_ = &e;
+    xml_.allowAttributes(e, {"robot", "scale", "name"});
+    readModel(e, "robot", problem_.robot);
+    const KinematicModel& model = problem_.robot.model;
+    for (int j : model.movableJoints())
+      problem_.robot.initialJoints.push_back(std::clamp(0.0, model.joints[j].lower,
+                                                        model.joints[j].upper));
+  }
+
+  ObjectRole readRole(const XMLElement& e) const {
+    const std::string role = xml_.optionalText(e, "role").value_or("fixed");
+    if (role == "fixed") return ObjectRole::Fixed;
+    if (role == "movable") return ObjectRole::Movable;
+    if (role == "target") return ObjectRole::Target;
+    xml_.fail(e, "unknown role '" + role + "'; expected fixed, movable or target");
+  }
+
+  void readObstacle(const XMLElement& e) {
+    xml_.allowAttributes(e, {"obstacle", "scale", "name", "role"});
+    ObjectInstance object;
+    object.role = readRole(e);
+    readModel(e, "obstacle", object);
+    if (const XMLElement* u = e.FirstChildElement("Uncertainty")) {
+      xml_.allowAttributes(*u, {"x", "y", "yaw"});
+      object.uncertainty = {nonNegative(*u, "x"), nonNegative(*u, "y"), nonNegative(*u, "yaw")};
+    }
+    problem_.objects.push_back(std::move(object));
+  }
+
+  double nonNegative(const XMLElement& e, const char* attribute, double fallback = 0.0) const {
+    const double value = xml_.number(e, attribute, fallback);
+    if (value < 0.0) xml_.fail(e, std::string("attribute ") + attribute + " must not be negative");
+    return value;
+  }
+
+  double positive(const XMLElement& e, const char* attribute, double fallback) const {
+    const double value = xml_.number(e, attribute, fallback);
+    if (!(value > 0.0)) xml_.fail(e, std::string("attribute ") + attribute + " must be positive");
+    return value;
+  }
+
+  void readPhysics(const XMLElement& e) {
+    xml_.allowAttributes(e, {"stepSize", "gravity", "maxContacts", "solverIterations", "friction",
+                             "erp", "cfm"});
+    PhysicsSettings& p = problem_.physics;
+    p.where = xml_.at(e);
+    p.stepSize = positive(e, "stepSize", p.stepSize);
+    p.gravity = xml_.vector3(e, "gravity", p.gravity);
+    p.maxContacts = xml_.integer(e, "maxContacts", p.maxContacts);
+    p.solverIterations = xml_.integer(e, "solverIterations", p.solverIterations);
+    p.friction = nonNegative(e, "friction", p.friction);
+    p.erp = nonNegative(e, "erp", p.erp);
+    p.cfm = nonNegative(e, "cfm", p.cfm);
+    if (p.stepSize > 0.1) xml_.fail(e, "stepSize must be at most 0.1 s for a stable simulation");
+    if (p.maxContacts < 1 || p.maxContacts > 64) xml_.fail(e, "maxContacts must be in [1, 64]");
+    if (p.solverIterations < 1 || p.solverIterations > 1000)
+      xml_.fail(e, "solverIterations must be in [1, 1000]");
+    if (p.erp > 1.0) xml_.fail(e, "erp must be in [0, 1]");
+  }
+
+  void readInteraction(const XMLElement& e) {
+    xml_.allowAttributes(e, {"maxObjectSpeed", "maxDisplacement", "maxTilt", "targetTolerance",
+                             "support"});
+    InteractionConstraints& c = problem_.interaction;
+    c.where = xml_.at(e);
+    c.maxObjectSpeed = positive(e, "maxObjectSpeed", c.maxObjectSpeed);
+    c.maxDisplacement = positive(e, "maxDisplacement", c.maxDisplacement);
+    c.maxTilt = positive(e, "maxTilt", c.maxTilt);
+    c.targetTolerance = positive(e, "targetTolerance", c.targetTolerance);
+    c.supportObject = xml_.optionalText(e, "support").value_or("");
+  }
+
+  void readWorkspace(const XMLElement& e) {
+    xml_.allowAttributes(e, {"min", "max"});
+    workspaceElement_ = &e;
+    problem_.workspace.min() = xml_.vector3(e, "min", {});
+    problem_.workspace.max() = xml_.vector3(e, "max", {});
+    if (!xml_.optionalText(e, "min") || !xml_.optionalText(e, "max"))
+      xml_.fail(e, "<Workspace> needs min=\"x y z\" and max=\"x y z\"");
+    if (!(problem_.workspace.min().array() < problem_.workspace.max().array()).all())
+      xml_.fail(e, "<Workspace> needs min < max on every axis");
+  }
+
+  void readPlanner(const XMLElement& e) {
+    if (plannerElement_) xml_.fail(e, "only one <Planner> block is supported");
+    plannerElement_ = &e;
+    problem_.planner.where = xml_.at(e);
+    const XMLElement* parameters = e.FirstChildElement("Parameters");
+    if (!parameters) xml_.fail(e, "<Planner> needs a <Parameters> block with a <Name>");
+    readParameters(*parameters);
+    const XMLElement* queries = e.FirstChildElement("Queries");
+    if (!queries) xml_.fail(e, "<Planner> needs a <Queries> block with at least one <Query>");
+    for (const XMLElement* q = queries->FirstChildElement(); q; q = q->NextSiblingElement())
+      readQuery(*q);
+    if (problem_.queries.empty()) xml_.fail(*queries, "<Queries> has no <Query>");
+  }
+
+  void readParameters(const XMLElement& parameters) {
+    const XMLElement* name = parameters.FirstChildElement("Name");
+    if (!name || xml_.elementText(*name).empty())
+      xml_.fail(parameters, "<Parameters> needs <Name>PlannerName</Name>");
+    problem_.planner.name = xml_.elementText(*name);
+    for (const XMLElement* p = parameters.FirstChildElement("Parameter"); p;
+         p = p->NextSiblingElement("Parameter")) {
+      PlannerParameter parameter{xml_.requiredText(*p, "name"), xml_.elementText(*p), xml_.at(*p)};
+      if (parameter.value.empty()) xml_.fail(*p, "parameter '" + parameter.name + "' has no value");
+      if (!applyKauthamPhysicsParameter(parameter, problem_.physics, xml_, *p))
+        problem_.planner.parameters.push_back(parameter);
+    }
+  }
+
+  void readQuery(const XMLElement& q) {
+    if (std::strcmp(q.Name(), "Query") != 0)
+      xml_.fail(q, std::string("unexpected <") + q.Name() + "> inside <Queries>; expected <Query>");
+    xml_.allowAttributes(q, {"name"});
+    Query query;
+    query.where = xml_.at(q);
+    query.name = xml_.optionalText(q, "name").value_or("query" +
+                                                       std::to_string(problem_.queries.size()));
+    if (const XMLElement* init = q.FirstChildElement("Init")) query.init = readInit(*init);
+    if (q.FirstChildElement("Goal"))
+      xml_.fail(*q.FirstChildElement("Goal"),
+                "a joint-space <Goal> is not supported yet; give a <GoalRegion link=\"..\" "
+                "relativeTo=\"..\" offset=\"x y z\" tolerance=\"..\"/>");
+    const XMLElement* goal = q.FirstChildElement("GoalRegion");
+    if (!goal) xml_.fail(q, "<Query> needs a <GoalRegion>");
+    query.goal = readGoalRegion(*goal);
+    problem_.queries.push_back(query);
+  }
+
+  std::vector<double> readInit(const XMLElement& init) const {
+    std::vector<double> values = xml_.numbersInText(init);
+    const std::size_t dof = problem_.robot.model.movableJoints().size();
+    if (values.size() != dof)
+      xml_.fail(init, "<Init> needs " + std::to_string(dof) +
+                          " normalized values (one per movable joint), got " +
+                          std::to_string(values.size()));
+    for (double v : values)
+      if (v < 0.0 || v > 1.0) xml_.fail(init, "<Init> values are normalized: each in [0, 1]");
+    return values;
+  }
+
+  GoalRegion readGoalRegion(const XMLElement& e) const {
+    xml_.allowAttributes(e, {"link", "relativeTo", "offset", "tolerance"});
+    GoalRegion goal;
+    goal.where = xml_.at(e);
+    goal.link = xml_.requiredText(e, "link");
+    goal.relativeTo = xml_.optionalText(e, "relativeTo").value_or("");
+    goal.offset = xml_.vector3(e, "offset", goal.offset);
+    goal.tolerance = positive(e, "tolerance", goal.tolerance);
+    return goal;
+  }
+
+  // ----- checks of the whole problem -----
+
+  void check(const XMLElement& root) {
+    checkNames();
+    checkObjects(root);
+    checkSupport();
+    if (!workspaceElement_) xml_.fail(root, "the problem has no <Workspace min=.. max=..>");
+    for (const Query& query : problem_.queries) checkGoal(query.goal);
+  }
+
+  void checkNames() const {
+    std::set<std::string> names{problem_.robot.name};
+    for (const ObjectInstance& object : problem_.objects)
+      if (!names.insert(object.name).second)
+        throw InputError(object.where, "the name '" + object.name +
+                                           "' is used twice; give each instance its own "
+                                           "<KauthamName name=\"..\"/>");
+  }
+
+  void checkObjects(const XMLElement& root) const {
+    const auto targets = std::count_if(problem_.objects.begin(), problem_.objects.end(),
+                                       [](auto& o) { return o.role == ObjectRole::Target; });
+    if (targets != 1)
+      xml_.fail(root, "the problem needs exactly one <Obstacle role=\"target\">, found " +
+                          std::to_string(targets));
+    for (const ObjectInstance& object : problem_.objects) {
+      if (object.role == ObjectRole::Fixed) continue;
+      double mass = 0.0;
+      for (const Link& link : object.model.links) mass += link.inertial.mass;
+      if (!(mass > 0.0))
+        throw InputError(object.where, "the " + std::string(toString(object.role)) + " object '" +
+                                           object.name +
+                                           "' has no mass: give its URDF links an <inertial>");
+      if (!object.model.movableJoints().empty())
+        throw InputError(object.where, "object '" + object.name +
+                                           "' has movable joints; objects must be rigid");
+    }
+  }
+
+  void checkSupport() {
+    InteractionConstraints& c = problem_.interaction;
+    if (c.supportObject.empty()) return;
+    auto index = problem_.findObject(c.supportObject);
+    if (!index || problem_.objects[*index].role != ObjectRole::Fixed)
+      throw InputError(c.where, "support '" + c.supportObject +
+                                    "' must name a fixed <Obstacle> (the table)");
+  }
+
+  void checkGoal(const GoalRegion& goal) const {
+    if (!problem_.robot.model.findLink(goal.link))
+      throw InputError(goal.where, "the robot '" + problem_.robot.name + "' has no link '" +
+                                       goal.link + "'");
+    if (!goal.relativeTo.empty() && !problem_.findObject(goal.relativeTo))
+      throw InputError(goal.where, "relativeTo names no object: '" + goal.relativeTo + "'");
+    const Eigen::Vector3d position = problem_.goalPosition(goal);
+    if (!problem_.workspace.contains(position))
+      throw InputError(goal.where, "the goal (" + std::to_string(position.x()) + ", " +
+                                       std::to_string(position.y()) + ", " +
+                                       std::to_string(position.z()) +
+                                       ") lies outside the <Workspace>");
+  }
+
+  XmlReader xml_;
+  std::vector<fs::path> modelDirs_;
+  Problem problem_;
+  const XMLElement* robotElement_ = nullptr;
+  const XMLElement* plannerElement_ = nullptr;
+  const XMLElement* workspaceElement_ = nullptr;
+};
+
+}  // namespace
+
+Problem loadProblem(const fs::path& problemFile, const std::vector<fs::path>& modelDirs) {
+  return ProblemReader(problemFile, modelDirs).read();
+}
+
+}  // namespace kautham::core

@@ -1,0 +1,131 @@
+#include "XmlReader.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
+
+namespace kautham::core {
+
+XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
+  std::error_code ignored;
+  if (!std::filesystem::is_regular_file(file_, ignored))
+    throw InputError({file_, 0}, "cannot read the file: it does not exist or is not a file");
+  if (document_.LoadFile(file_.c_str()) != tinyxml2::XML_SUCCESS) {
+    const char* detail = document_.ErrorStr();
+    throw InputError({file_, document_.ErrorLineNum()},
+                     std::string("malformed XML: ") + (detail ? detail : "unknown error"));
+  }
+}
+
+const tinyxml2::XMLElement& XmlReader::root(const char* expectedName) const {
+  const tinyxml2::XMLElement* element = document_.RootElement();
+  if (!element) throw InputError({file_, 1}, std::string("expected a <") + expectedName + "> root");
+  if (std::strcmp(element->Name(), expectedName) != 0)
+    fail(*element, std::string("expected the root element <") + expectedName + ">, found <" +
+                       element->Name() + ">");
+  return *element;
+}
+
+SourceLocation XmlReader::at(const tinyxml2::XMLElement& element) const {
+  return {file_, element.GetLineNum()};
+}
+
+void XmlReader::fail(const tinyxml2::XMLElement& element, const std::string& message) const {
+  throw InputError(at(element), message);
+}
+
+void XmlReader::allowAttributes(const tinyxml2::XMLElement& element,
+                                std::initializer_list<const char*> allowed) const {
+  for (const tinyxml2::XMLAttribute* a = element.FirstAttribute(); a; a = a->Next()) {
+    bool known = false;
+    for (const char* name : allowed) known = known || std::strcmp(a->Name(), name) == 0;
+    if (known) continue;
+    std::string list;
+    for (const char* name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
+    fail(element, std::string("<") + element.Name() + "> has no attribute '" + a->Name() +
+                      "'; allowed: " + (list.empty() ? "none" : list));
+  }
+}
+
+std::optional<std::string> XmlReader::optionalText(const tinyxml2::XMLElement& element,
+                                                   const char* attribute) const {
+  const char* value = element.Attribute(attribute);
+  return value ? std::optional<std::string>(value) : std::nullopt;
+}
+
+std::string XmlReader::requiredText(const tinyxml2::XMLElement& element,
+                                    const char* attribute) const {
+  auto value = optionalText(element, attribute);
+  if (!value || value->empty())
+    fail(element, std::string("<") + element.Name() + "> needs the attribute " + attribute);
+  return *value;
+}
+
+double XmlReader::number(const tinyxml2::XMLElement& element, const char* attribute,
+                         double fallback) const {
+  auto text = optionalText(element, attribute);
+  if (!text) return fallback;
+  auto values = parseNumbers(element, *text, std::string("attribute ") + attribute);
+  if (values.size() != 1)
+    fail(element, std::string("attribute ") + attribute + " must be one number, got '" + *text +
+                      "'");
+  return values.front();
+}
+
+double XmlReader::requiredNumber(const tinyxml2::XMLElement& element,
+                                 const char* attribute) const {
+  requiredText(element, attribute);
+  return number(element, attribute, 0.0);
+}
+
+int XmlReader::integer(const tinyxml2::XMLElement& element, const char* attribute,
+                       int fallback) const {
+  const double value = number(element, attribute, fallback);
+  if (value != std::floor(value) || std::abs(value) > 1e9)
+    fail(element, std::string("attribute ") + attribute + " must be a whole number");
+  return static_cast<int>(value);
+}
+
+Eigen::Vector3d XmlReader::vector3(const tinyxml2::XMLElement& element, const char* attribute,
+                                   const Eigen::Vector3d& fallback) const {
+  auto text = optionalText(element, attribute);
+  if (!text) return fallback;
+  auto values = parseNumbers(element, *text, std::string("attribute ") + attribute);
+  if (values.size() != 3)
+    fail(element, std::string("attribute ") + attribute + " must be three numbers \"x y z\", got '" +
+                      *text + "'");
+  return {values[0], values[1], values[2]};
+}
+
+std::string XmlReader::elementText(const tinyxml2::XMLElement& element) const {
+  const char* text = element.GetText();
+  std::string value = text ? text : "";
+  const auto first = value.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos) return "";
+  return value.substr(first, value.find_last_not_of(" \t\r\n") - first + 1);
+}
+
+std::vector<double> XmlReader::numbersInText(const tinyxml2::XMLElement& element) const {
+  return parseNumbers(element, elementText(element), std::string("<") + element.Name() + ">");
+}
+
+std::vector<double> XmlReader::parseNumbers(const tinyxml2::XMLElement& element,
+                                            const std::string& text,
+                                            const std::string& what) const {
+  std::vector<double> values;
+  std::istringstream words(text);
+  std::string word;
+  while (words >> word) {
+    char* end = nullptr;
+    const double value = std::strtod(word.c_str(), &end);
+    if (end == word.c_str() || *end != '\0')
+      fail(element, what + ": expected a number, got '" + word + "'");
+    if (!std::isfinite(value))
+      fail(element, what + ": expected a finite number, got '" + word + "'");
+    values.push_back(value);
+  }
+  return values;
+}
+
+}  // namespace kautham::core

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/control/SpaceInformation.h>
+
+#include "kautham/core/Problem.h"
+#include "kautham/physics/EndEffectorProjection.h"
+#include "kautham/physics/PhysicsPropagator.h"
+#include "kautham/physics/WorkspaceGoal.h"
+#include "kautham/physics/World.h"
+#include "kautham/physics/WorldStateSpace.h"
+#include "kautham/physics/WorldValidityChecker.h"
+
+namespace kautham::physics {
+
+/// How controls are applied: each control is held for a whole number of propagation steps,
+/// between min and max, and each propagation step is a whole number of physics steps.
+struct PropagationSettings {
+  double propagationStepSize = 0.05;  ///< seconds
+  unsigned minControlSteps = 2;
+  unsigned maxControlSteps = 20;
+};
+
+/// Everything a control planner needs for one query of a problem, wired together: the ODE
+/// world, OMPL's state and control spaces, the propagator, the validity checker, the
+/// end-effector projection, the start state and the goal region.
+class PlanningContext {
+ public:
+  PlanningContext(const core::Problem& problem, std::size_t queryIndex,
+                  const PropagationSettings& settings);
+
+  const core::Problem& problem() const { return problem_; }
+  const core::Query& query() const { return problem_.queries.at(queryIndex_); }
+  World& world() { return *world_; }
+  const WorldLayout& layout() const { return *layout_; }
+
+  const ompl::control::SpaceInformationPtr& spaceInformation() const { return si_; }
+  const ompl::base::ProblemDefinitionPtr& problemDefinition() const { return pdef_; }
+  const PhysicsPropagator& propagator() const { return *propagator_; }
+  const WorldValidityChecker& validityChecker() const { return *validity_; }
+  const WorkspaceGoal& goal() const { return *goal_; }
+  EndEffectorProjection& projection() { return *projection_; }
+
+  const std::vector<double>& startState() const { return start_; }
+  /// Why the start state is invalid, or Violation::None (the planners need a valid start).
+  Violation startViolation() const { return startViolation_; }
+
+ private:
+  core::Problem problem_;
+  std::size_t queryIndex_;
+  std::shared_ptr<World> world_;
+  std::shared_ptr<const WorldLayout> layout_;
+  std::shared_ptr<WorldStateSpace> space_;
+  ompl::control::SpaceInformationPtr si_;
+  ompl::base::ProblemDefinitionPtr pdef_;
+  std::shared_ptr<PhysicsPropagator> propagator_;
+  std::shared_ptr<WorldValidityChecker> validity_;
+  std::shared_ptr<WorkspaceGoal> goal_;
+  std::shared_ptr<EndEffectorProjection> projection_;
+  std::vector<double> start_;
+  Violation startViolation_ = Violation::None;
+};
+
+}  // namespace kautham::physics

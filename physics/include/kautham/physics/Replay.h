@@ -1,0 +1,47 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "kautham/physics/PlanningContext.h"
+
+namespace kautham::physics {
+
+/// One control of a plan: joint velocity targets held for `steps` propagation steps.
+struct ControlStep {
+  std::vector<double> velocities;
+  unsigned steps = 0;
+};
+
+/// The world after each propagation step of a replay (frame 0 is the start state).
+struct ReplayFrame {
+  double time = 0.0;
+  std::vector<double> state;
+  Violation violation = Violation::None;
+};
+
+struct ReplayResult {
+  std::vector<ReplayFrame> frames;
+  Violation firstViolation = Violation::None;
+  double finalGoalDistance = 0.0;
+  bool reachedGoal = false;  ///< valid all along and ends inside the goal region
+
+  const std::vector<double>& finalState() const { return frames.back().state; }
+};
+
+/// How far a movable object ended up from where it started.
+struct ObjectDisplacement {
+  std::string name;
+  double distance = 0.0;  ///< metres
+};
+
+/// Movable objects that moved more than `threshold` metres between the first and last frame.
+std::vector<ObjectDisplacement> movedObjects(const WorldLayout& layout, const ReplayResult& replay,
+                                             double threshold = 0.005);
+
+/// Re-propagates a plan's controls from the context's start state, one propagation step at
+/// a time as the planners do, and stops at the first invalid state.
+ReplayResult replay(const PlanningContext& context, const std::vector<ControlStep>& controls);
+
+}  // namespace kautham::physics

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <memory>
+
+#include <ompl/base/goals/GoalRegion.h>
+
+#include "kautham/physics/WorldLayout.h"
+
+namespace kautham::physics {
+
+/// A pre-grasp region: the goal link's origin within a tolerance of a point in the workspace.
+class WorkspaceGoal : public ompl::base::GoalRegion {
+ public:
+  WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
+                std::shared_ptr<const WorldLayout> layout, const Eigen::Vector3d& position,
+                double tolerance);
+
+  double distanceGoal(const ompl::base::State* state) const override;
+  double distance(const double* state) const;
+  const Eigen::Vector3d& position() const { return position_; }
+
+ private:
+  std::shared_ptr<const WorldLayout> layout_;
+  Eigen::Vector3d position_;
+};
+
+}  // namespace kautham::physics

@@ -1,0 +1,84 @@
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <ode/ode.h>
+
+#include "kautham/core/Problem.h"
+#include "kautham/physics/OdeLibrary.h"
+#include "kautham/physics/WorldLayout.h"
+
+namespace kautham::physics {
+
+struct GeomTag;  // what an ODE geometry belongs to (private to the physics library)
+
+/// A robot joint driven by a velocity motor: one control of the planner.
+struct Actuator {
+  std::string name;
+  dJointID joint = nullptr;
+  core::JointType type = core::JointType::Revolute;
+  double maxVelocity = 0.0;
+};
+
+/// The ODE world built from a problem: a flat collision space, fixed obstacles as static
+/// geometry, the robot as bodies joined by motorised joints (without gravity, so it holds
+/// itself), objects as free bodies. Owns every ODE object it makes.
+///
+/// Stepping is reproducible: QuickStep reorders constraints with ODE's process-wide random
+/// seed, so `resetSolverSeed()` must be called before a run of steps that must repeat.
+/// One World belongs to one thread.
+class World {
+ public:
+  World(const core::Problem& problem, const core::Query& query);
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  const WorldLayout& layout() const { return layout_; }
+  const std::vector<Actuator>& actuators() const { return actuators_; }
+  const core::PhysicsSettings& settings() const { return settings_; }
+
+  void readState(double* state) const;
+  void writeState(const double* state);
+
+  /// Sets every motor's target velocity (one value per actuator, clamped to its limit).
+  void setJointVelocities(const double* velocities);
+  /// Current position of each actuated joint (radians or metres), read from ODE.
+  std::vector<double> jointPositions() const;
+
+  void resetSolverSeed() const;
+  /// Detects contacts, advances the simulation by one step, and records contact events.
+  void step();
+  /// Detects contacts without stepping (to check a start state); records contact events.
+  void probeContacts();
+  /// Events (ContactEvent flags) recorded since the last call, which clears them.
+  unsigned takeEvents();
+
+  /// Contact parameters used for every new contact (sampled per particle in later planners).
+  void setContactParameters(double friction, double erp, double cfm);
+
+ private:
+  class Builder;
+  friend class Builder;
+
+  static void nearCallback(void* data, dGeomID a, dGeomID b);
+  void collide(dGeomID a, dGeomID b);
+  bool diverged() const;
+  void destroy();
+
+  std::shared_ptr<OdeLibrary> ode_;
+  core::PhysicsSettings settings_;
+  WorldLayout layout_;
+  dWorldID world_ = nullptr;
+  dSpaceID space_ = nullptr;
+  dJointGroupID contactGroup_ = nullptr;
+  std::vector<dBodyID> bodies_;  ///< parallel to layout_.bodies
+  std::vector<Actuator> actuators_;
+  std::vector<std::unique_ptr<GeomTag>> tags_;
+  std::vector<dContact> contactBuffer_;
+  unsigned events_ = kNoEvent;
+};
+
+}  // namespace kautham::physics

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "kautham/core/Problem.h"
+
+namespace kautham::physics {
+
+/// What a dynamic body stands for.
+enum class BodyRole { Robot, Movable, Target };
+
+/// One dynamic body of the world: a robot link (with the links fixed to it) or an object.
+struct BodyInfo {
+  std::string name;
+  BodyRole role = BodyRole::Robot;
+  int objectIndex = -1;  ///< index into Problem::objects, -1 for robot bodies
+  /// Pose of the body's main link in the body frame (ODE bodies sit at the centre of mass).
+  Eigen::Isometry3d linkInBody = Eigen::Isometry3d::Identity();
+};
+
+/// Reasons why a propagation step produced an invalid state; stored as bit flags in the state.
+enum ContactEvent : unsigned {
+  kNoEvent = 0,
+  kRobotTouchedFixed = 1u << 0,
+  kRobotTouchedTarget = 1u << 1,
+  kSimulationDiverged = 1u << 2,
+};
+
+/// The layout of a world state: every dynamic body's 13 numbers (position, unit quaternion
+/// w-x-y-z, linear and angular velocity), then one number holding ContactEvent flags.
+/// Planners, validity checks and replays read states through this description only.
+class WorldLayout {
+ public:
+  static constexpr std::size_t kBodyStateSize = 13;
+  static constexpr std::size_t kPosition = 0;
+  static constexpr std::size_t kOrientation = 3;
+  static constexpr std::size_t kLinearVelocity = 7;
+  static constexpr std::size_t kAngularVelocity = 10;
+
+  std::vector<BodyInfo> bodies;
+  int goalBody = -1;  ///< the body that carries the goal link
+  Eigen::Isometry3d goalLinkInBody = Eigen::Isometry3d::Identity();
+
+  std::size_t stateSize() const { return bodies.size() * kBodyStateSize + 1; }
+  std::size_t flagsIndex() const { return bodies.size() * kBodyStateSize; }
+
+  static Eigen::Vector3d position(const double* state, std::size_t body);
+  static Eigen::Quaterniond orientation(const double* state, std::size_t body);
+  static Eigen::Vector3d linearVelocity(const double* state, std::size_t body);
+  static Eigen::Vector3d angularVelocity(const double* state, std::size_t body);
+  unsigned flags(const double* state) const;
+
+  /// World position of the goal link's origin (the end effector).
+  Eigen::Vector3d goalLinkPosition(const double* state) const;
+  /// World pose of a body's main link.
+  Eigen::Isometry3d linkPose(const double* state, std::size_t body) const;
+};
+
+}  // namespace kautham::physics

@@ -1,0 +1,52 @@
+#pragma once
+
+#include <memory>
+
+#include <ompl/base/StateValidityChecker.h>
+
+#include "kautham/core/Problem.h"
+#include "kautham/physics/WorldLayout.h"
+
+namespace kautham::physics {
+
+/// Why a state is invalid (the paper's validity function F(W, C)).
+enum class Violation {
+  None,
+  SimulationDiverged,   ///< NaN or runaway speeds: the physics blew up
+  RobotTouchedFixed,    ///< the robot touched a fixed obstacle
+  RobotTouchedTarget,   ///< the robot touched the target
+  TargetMoved,          ///< the target drifted more than the tolerance
+  OutsideWorkspace,     ///< the end effector left the workspace
+  ObjectTooFast,        ///< a movable object is faster than the limit
+  ObjectTilted,         ///< a movable object tipped beyond the limit
+  ObjectOffSupport,     ///< a movable object left the table (or fell)
+};
+const char* toString(Violation violation);
+
+/// State validity for pushing: the robot may touch movable objects only, and what it pushes
+/// must stay upright, slow and on the support surface. Reads states through WorldLayout only,
+/// so a check costs a few arithmetic operations per object and no physics.
+class WorldValidityChecker : public ompl::base::StateValidityChecker {
+ public:
+  WorldValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                       std::shared_ptr<const WorldLayout> layout, const core::Problem& problem,
+                       const double* startState);
+
+  bool isValid(const ompl::base::State* state) const override;
+  /// The first constraint the state breaks, or Violation::None.
+  Violation check(const double* state) const;
+
+ private:
+  Violation checkObject(const double* state, std::size_t body) const;
+
+  std::shared_ptr<const WorldLayout> layout_;
+  core::InteractionConstraints limits_;
+  Eigen::AlignedBox3d workspace_;
+  bool hasSupport_ = false;
+  Eigen::AlignedBox2d supportArea_;  ///< top face of the support, in x and y
+  double supportTop_ = 0.0;          ///< height of the support's top face
+  std::size_t targetBody_ = 0;
+  Eigen::Vector3d targetStart_;
+};
+
+}  // namespace kautham::physics

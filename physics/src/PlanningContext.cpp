@@ -1,0 +1,81 @@
+#include "kautham/physics/PlanningContext.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+namespace kautham::physics {
+
+namespace {
+
+std::shared_ptr<ompl::control::RealVectorControlSpace> makeControlSpace(
+    const ompl::base::StateSpacePtr& space, const World& world) {
+  const auto& actuators = world.actuators();
+  auto controls = std::make_shared<ompl::control::RealVectorControlSpace>(
+      space, static_cast<unsigned>(actuators.size()));
+  ompl::base::RealVectorBounds bounds(static_cast<unsigned>(actuators.size()));
+  for (std::size_t i = 0; i < actuators.size(); ++i) {
+    bounds.setLow(i, -actuators[i].maxVelocity);
+    bounds.setHigh(i, actuators[i].maxVelocity);
+  }
+  controls->setBounds(bounds);
+  return controls;
+}
+
+void checkSettings(const PropagationSettings& settings, double physicsStep) {
+  const double ratio = settings.propagationStepSize / physicsStep;
+  if (!(settings.propagationStepSize > 0.0) || std::abs(ratio - std::round(ratio)) > 1e-6 ||
+      std::round(ratio) < 1.0)
+    throw std::invalid_argument("the propagation step size (" +
+                                std::to_string(settings.propagationStepSize) +
+                                " s) must be a whole multiple of the physics step (" +
+                                std::to_string(physicsStep) + " s)");
+  if (settings.minControlSteps < 1 || settings.minControlSteps > settings.maxControlSteps)
+    throw std::invalid_argument("control steps need 1 <= min_control_steps <= max_control_steps");
+}
+
+}  // namespace
+
+PlanningContext::PlanningContext(const core::Problem& problem, std::size_t queryIndex,
+                                 const PropagationSettings& settings)
+    : problem_(problem), queryIndex_(queryIndex) {
+  checkSettings(settings, problem_.physics.stepSize);
+  world_ = std::make_shared<World>(problem_, query());
+  layout_ = std::make_shared<WorldLayout>(world_->layout());
+  start_.resize(layout_->stateSize());
+  world_->readState(start_.data());
+
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(1.0);
+  space_ = std::make_shared<WorldStateSpace>(
+      layout_, Eigen::AlignedBox3d(problem_.workspace.min() - margin,
+                                   problem_.workspace.max() + margin));
+  projection_ = std::make_shared<EndEffectorProjection>(space_.get(), layout_, problem_.workspace);
+  space_->registerDefaultProjection(projection_);
+
+  si_ = std::make_shared<ompl::control::SpaceInformation>(space_,
+                                                          makeControlSpace(space_, *world_));
+  propagator_ = std::make_shared<PhysicsPropagator>(si_, world_);
+  validity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data());
+  si_->setStatePropagator(propagator_);
+  si_->setStateValidityChecker(validity_);
+  si_->setPropagationStepSize(settings.propagationStepSize);
+  si_->setMinMaxControlDuration(settings.minControlSteps, settings.maxControlSteps);
+  si_->setup();
+
+  // A start state that already touches what it must not is reported, not planned from.
+  world_->probeContacts();
+  start_[layout_->flagsIndex()] = world_->takeEvents();
+  startViolation_ = validity_->check(start_.data());
+  start_[layout_->flagsIndex()] = 0.0;
+
+  goal_ = std::make_shared<WorkspaceGoal>(si_, layout_, problem_.goalPosition(query().goal),
+                                          query().goal.tolerance);
+  pdef_ = std::make_shared<ompl::base::ProblemDefinition>(si_);
+  ompl::base::ScopedState<> start(space_);
+  std::copy(start_.begin(), start_.end(), WorldStateSpace::values(start.get()));
+  pdef_->addStartState(start);
+  pdef_->setGoal(goal_);
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,136 @@
+#include "kautham/physics/World.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "GeomTag.h"
+
+namespace kautham::physics {
+
+World::~World() { destroy(); }
+
+void World::destroy() {
+  // Every ODE object goes before the library may close (ode_ is released after this).
+  if (contactGroup_) dJointGroupDestroy(contactGroup_);
+  if (space_) dSpaceDestroy(space_);  // destroys its geoms too (cleanup mode is on)
+  if (world_) dWorldDestroy(world_);  // destroys bodies and joints
+  contactGroup_ = nullptr;
+  space_ = nullptr;
+  world_ = nullptr;
+}
+
+void World::readState(double* state) const {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    double* s = state + i * WorldLayout::kBodyStateSize;
+    const dReal* p = dBodyGetPosition(bodies_[i]);
+    const dReal* q = dBodyGetQuaternion(bodies_[i]);
+    const dReal* v = dBodyGetLinearVel(bodies_[i]);
+    const dReal* w = dBodyGetAngularVel(bodies_[i]);
+    std::copy(p, p + 3, s + WorldLayout::kPosition);
+    std::copy(q, q + 4, s + WorldLayout::kOrientation);
+    std::copy(v, v + 3, s + WorldLayout::kLinearVelocity);
+    std::copy(w, w + 3, s + WorldLayout::kAngularVelocity);
+  }
+  state[layout_.flagsIndex()] = 0.0;
+}
+
+void World::writeState(const double* state) {
+  for (std::size_t i = 0; i < bodies_.size(); ++i) {
+    const double* s = state + i * WorldLayout::kBodyStateSize;
+    dBodySetPosition(bodies_[i], s[0], s[1], s[2]);
+    // dBodySetQuaternion recomputes the rotation matrix from q exactly as a step does, so a
+    // written state continues bit for bit like the state the step left behind.
+    dQuaternion q = {s[3], s[4], s[5], s[6]};
+    dBodySetQuaternion(bodies_[i], q);
+    dBodySetLinearVel(bodies_[i], s[7], s[8], s[9]);
+    dBodySetAngularVel(bodies_[i], s[10], s[11], s[12]);
+  }
+}
+
+void World::setJointVelocities(const double* velocities) {
+  for (std::size_t i = 0; i < actuators_.size(); ++i) {
+    const Actuator& a = actuators_[i];
+    const double v = std::clamp(velocities[i], -a.maxVelocity, a.maxVelocity);
+    if (a.type == core::JointType::Prismatic)
+      dJointSetSliderParam(a.joint, dParamVel, v);
+    else
+      dJointSetHingeParam(a.joint, dParamVel, v);
+  }
+}
+
+std::vector<double> World::jointPositions() const {
+  std::vector<double> positions;
+  for (const Actuator& a : actuators_)
+    positions.push_back(a.type == core::JointType::Prismatic ? dJointGetSliderPosition(a.joint)
+                                                             : dJointGetHingeAngle(a.joint));
+  return positions;
+}
+
+void World::resetSolverSeed() const { dRandSetSeed(0); }
+
+void World::setContactParameters(double friction, double erp, double cfm) {
+  settings_.friction = friction;
+  settings_.erp = erp;
+  settings_.cfm = cfm;
+}
+
+void World::step() {
+  dSpaceCollide(space_, this, &World::nearCallback);
+  dWorldQuickStep(world_, settings_.stepSize);
+  dJointGroupEmpty(contactGroup_);
+  if (diverged()) events_ |= kSimulationDiverged;
+}
+
+void World::probeContacts() {
+  dSpaceCollide(space_, this, &World::nearCallback);
+  dJointGroupEmpty(contactGroup_);
+}
+
+unsigned World::takeEvents() {
+  const unsigned events = events_;
+  events_ = kNoEvent;
+  return events;
+}
+
+void World::nearCallback(void* data, dGeomID a, dGeomID b) {
+  static_cast<World*>(data)->collide(a, b);
+}
+
+void World::collide(dGeomID a, dGeomID b) {
+  dBodyID bodyA = dGeomGetBody(a);
+  dBodyID bodyB = dGeomGetBody(b);
+  if (!bodyA && !bodyB) return;
+  const GeomTag& tagA = *static_cast<const GeomTag*>(dGeomGetData(a));
+  const GeomTag& tagB = *static_cast<const GeomTag*>(dGeomGetData(b));
+  if (tagA.isRobot() && tagB.isRobot()) return;  // no self-collision (docs/problem-format.md)
+
+  const int count = dCollide(a, b, settings_.maxContacts, &contactBuffer_[0].geom,
+                             sizeof(dContact));
+  if (count == 0) return;
+  events_ |= contactEvent(tagA, tagB);
+  for (int i = 0; i < count; ++i) {
+    dContact& contact = contactBuffer_[i];
+    contact.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
+    contact.surface.mu = settings_.friction;
+    contact.surface.soft_erp = settings_.erp;
+    contact.surface.soft_cfm = settings_.cfm;
+    dJointAttach(dJointCreateContact(world_, contactGroup_, &contact), bodyA, bodyB);
+  }
+}
+
+bool World::diverged() const {
+  constexpr double kMaxSpeed = 100.0;   // m/s or rad/s: far beyond anything on a table
+  constexpr double kMaxDistance = 1e3;  // m from the origin
+  for (dBodyID body : bodies_) {
+    const dReal* p = dBodyGetPosition(body);
+    const dReal* v = dBodyGetLinearVel(body);
+    const dReal* w = dBodyGetAngularVel(body);
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(p[k]) < kMaxDistance) || !(std::abs(v[k]) < kMaxSpeed) ||
+          !(std::abs(w[k]) < kMaxSpeed))
+        return true;  // also catches NaN: every comparison with NaN is false
+  }
+  return false;
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,309 @@
+// Construction of the ODE world from a loaded problem.
+
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+#include "GeomTag.h"
+#include "kautham/physics/World.h"
+
+namespace kautham::physics {
+
+namespace {
+
+using core::KinematicModel;
+
+void toOdeRotation(const Eigen::Matrix3d& rotation, dMatrix3 out) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out[r * 4 + c] = rotation(r, c);
+    out[r * 4 + 3] = 0.0;
+  }
+}
+
+dGeomID createGeom(const core::Shape& shape) {
+  struct Create {
+    dGeomID operator()(const core::Box& b) const {
+      return dCreateBox(nullptr, b.size.x(), b.size.y(), b.size.z());
+    }
+    dGeomID operator()(const core::Cylinder& c) const {
+      return dCreateCylinder(nullptr, c.radius, c.length);
+    }
+    dGeomID operator()(const core::Sphere& s) const { return dCreateSphere(nullptr, s.radius); }
+  };
+  return std::visit(Create{}, shape);
+}
+
+/// Links rigidly attached to each other (through fixed joints) move as one ODE body.
+/// A group is named by its top link: the root, or a link whose parent joint moves.
+struct LinkGroups {
+  std::vector<int> groupOf;                 ///< link -> its group's top link
+  std::vector<Eigen::Isometry3d> inGroup;   ///< link pose in its group's top link frame
+
+  explicit LinkGroups(const KinematicModel& model)
+      : groupOf(model.links.size(), -1), inGroup(model.links.size()) {
+    std::vector<int> pending{model.rootLink};
+    groupOf[model.rootLink] = model.rootLink;
+    inGroup[model.rootLink] = Eigen::Isometry3d::Identity();
+    while (!pending.empty()) {
+      const int link = pending.back();
+      pending.pop_back();
+      for (int j : model.links[link].childJoints) {
+        const core::Joint& joint = model.joints[j];
+        const int child = joint.childLink;
+        const bool rigid = !joint.isMovable();
+        groupOf[child] = rigid ? groupOf[link] : child;
+        inGroup[child] = rigid ? inGroup[link] * joint.origin : Eigen::Isometry3d::Identity();
+        pending.push_back(child);
+      }
+    }
+  }
+
+  std::vector<int> members(int top) const {
+    std::vector<int> links;
+    for (std::size_t i = 0; i < groupOf.size(); ++i)
+      if (groupOf[i] == top) links.push_back(static_cast<int>(i));
+    return links;
+  }
+};
+
+/// Mass, centre of mass and inertia of a group, in its top link's axes.
+struct GroupMass {
+  double mass = 0.0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();  ///< about the centre of mass
+
+  GroupMass(const KinematicModel& model, const LinkGroups& groups, int top) {
+    for (int link : groups.members(top)) {
+      const core::Inertial& in = model.links[link].inertial;
+      mass += in.mass;
+      centre += in.mass * (groups.inGroup[link] * in.origin).translation();
+    }
+    if (mass <= 0.0) return;
+    centre /= mass;
+    for (int link : groups.members(top)) {
+      const core::Inertial& in = model.links[link].inertial;
+      const Eigen::Isometry3d frame = groups.inGroup[link] * in.origin;
+      const Eigen::Vector3d d = frame.translation() - centre;
+      // Rotate each inertia into the group's axes, then move it to the common centre.
+      inertia += frame.linear() * in.inertia * frame.linear().transpose() +
+                 in.mass * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+    }
+  }
+
+  /// ODE rejects a body without positive mass and positive definite inertia; massless links
+  /// (URDF frames without <inertial>) get a small sphere's, so they do not break the chain.
+  void ensurePhysical() {
+    constexpr double kDefaultMass = 0.1;
+    constexpr double kDefaultRadius = 0.02;
+    if (mass <= 0.0) mass = kDefaultMass;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia);
+    if (solver.eigenvalues().minCoeff() <= 0.0)
+      inertia = Eigen::Matrix3d::Identity() * 0.4 * mass * kDefaultRadius * kDefaultRadius;
+  }
+};
+
+}  // namespace
+
+class World::Builder {
+ public:
+  explicit Builder(World& world, const core::Problem& problem)
+      : world_(world), problem_(problem) {}
+
+  void build(const core::Query& query) {
+    createWorld();
+    buildRobot(query);
+    for (std::size_t i = 0; i < problem_.objects.size(); ++i) buildObject(static_cast<int>(i));
+    world_.contactBuffer_.resize(static_cast<std::size_t>(problem_.physics.maxContacts));
+  }
+
+ private:
+  void createWorld() {
+    const core::PhysicsSettings& s = problem_.physics;
+    world_.world_ = dWorldCreate();
+    dWorldSetGravity(world_.world_, s.gravity.x(), s.gravity.y(), s.gravity.z());
+    dWorldSetQuickStepNumIterations(world_.world_, s.solverIterations);
+    dWorldSetAutoDisableFlag(world_.world_, 0);  // a sleeping body would hide state
+    // A thin allowed penetration keeps resting contacts from flickering on and off.
+    dWorldSetContactSurfaceLayer(world_.world_, 0.0005);
+    world_.space_ = dSimpleSpaceCreate(nullptr);
+    dSpaceSetCleanup(world_.space_, 1);
+    world_.contactGroup_ = dJointGroupCreate(0);
+  }
+
+  void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top,
+                GeomTag::Kind kind, dBodyID body, const Eigen::Isometry3d& topInWorldOrBody) {
+    world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind}));
+    GeomTag* tag = world_.tags_.back().get();
+    for (int link : groups.members(top)) {
+      for (const core::CollisionShape& collision : model.links[link].collisions) {
+        dGeomID geom = createGeom(collision.shape);
+        dSpaceAdd(world_.space_, geom);
+        dGeomSetData(geom, tag);
+        dGeomSetCategoryBits(geom, tag->category());
+        dGeomSetCollideBits(geom, tag->collidesWith());
+        const Eigen::Isometry3d pose = topInWorldOrBody * groups.inGroup[link] * collision.origin;
+        dMatrix3 rotation;
+        toOdeRotation(pose.linear(), rotation);
+        if (body) {
+          dGeomSetBody(geom, body);
+          dGeomSetOffsetPosition(geom, pose.translation().x(), pose.translation().y(),
+                                 pose.translation().z());
+          dGeomSetOffsetRotation(geom, rotation);
+        } else {
+          dGeomSetPosition(geom, pose.translation().x(), pose.translation().y(),
+                           pose.translation().z());
+          dGeomSetRotation(geom, rotation);
+        }
+      }
+    }
+  }
+
+  /// Creates the body of a group whose top link is at `topPose`; returns it and records it.
+  dBodyID createBody(const KinematicModel& model, const LinkGroups& groups, int top,
+                     const Eigen::Isometry3d& topPose, BodyInfo info, GeomTag::Kind kind) {
+    GroupMass groupMass(model, groups, top);
+    groupMass.ensurePhysical();
+    dBodyID body = dBodyCreate(world_.world_);
+    dMass mass;
+    dMassSetZero(&mass);
+    const Eigen::Matrix3d& I = groupMass.inertia;
+    dMassSetParameters(&mass, groupMass.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1),
+                       I(0, 2), I(1, 2));
+    dBodySetMass(body, &mass);
+
+    // ODE bodies sit at their centre of mass; the link frame is offset from it.
+    Eigen::Isometry3d centreInTop = Eigen::Isometry3d::Identity();
+    centreInTop.translation() = groupMass.centre;
+    info.linkInBody = centreInTop.inverse();
+    setBodyPose(body, topPose * centreInTop);
+    addGeoms(model, groups, top, kind, body, info.linkInBody);
+
+    world_.bodies_.push_back(body);
+    world_.layout_.bodies.push_back(std::move(info));
+    return body;
+  }
+
+  static void setBodyPose(dBodyID body, const Eigen::Isometry3d& pose) {
+    dBodySetPosition(body, pose.translation().x(), pose.translation().y(),
+                     pose.translation().z());
+    const Eigen::Quaterniond q(pose.linear());
+    dQuaternion quaternion = {q.w(), q.x(), q.y(), q.z()};
+    dBodySetQuaternion(body, quaternion);
+  }
+
+  void buildRobot(const core::Query& query) {
+    const core::RobotInstance& robot = problem_.robot;
+    const KinematicModel& model = robot.model;
+    const LinkGroups groups(model);
+    const Eigen::Isometry3d base = robot.home.isometry();
+    // Joints are created at the zero configuration, so ODE's zero matches the URDF's zero.
+    const std::vector<int> movable = model.movableJoints();
+    const std::vector<Eigen::Isometry3d> zeroPoses =
+        model.linkPoses(base, std::vector<double>(movable.size(), 0.0));
+
+    addGeoms(model, groups, model.rootLink, GeomTag::Kind::RobotBase, nullptr, base);
+    std::vector<dBodyID> bodyOfGroup(model.links.size(), nullptr);
+    std::vector<int> bodyIndexOfGroup(model.links.size(), -1);
+    for (int j : movable) {
+      const int child = model.joints[j].childLink;
+      bodyIndexOfGroup[child] = static_cast<int>(world_.bodies_.size());
+      BodyInfo info{robot.name + "/" + model.links[child].name, BodyRole::Robot, -1, {}};
+      dBodyID body = createBody(model, groups, child, zeroPoses[child], info,
+                                GeomTag::Kind::RobotLink);
+      dBodySetGravityMode(body, 0);  // the arm holds itself: its motors need not fight gravity
+      bodyOfGroup[child] = body;
+    }
+    for (int j : movable) createActuator(model, j, zeroPoses, groups, bodyOfGroup);
+
+    const std::vector<Eigen::Isometry3d> initial =
+        model.linkPoses(base, problem_.initialJointValues(query));
+    for (int j : movable) {
+      const int child = model.joints[j].childLink;
+      const BodyInfo& info = world_.layout_.bodies[bodyIndexOfGroup[child]];
+      setBodyPose(bodyOfGroup[child], initial[child] * info.linkInBody.inverse());
+    }
+    locateGoalLink(query, groups, bodyIndexOfGroup);
+  }
+
+  void createActuator(const KinematicModel& model, int j,
+                      const std::vector<Eigen::Isometry3d>& zeroPoses, const LinkGroups& groups,
+                      const std::vector<dBodyID>& bodyOfGroup) {
+    const core::Joint& joint = model.joints[j];
+    const Eigen::Isometry3d frame = zeroPoses[joint.parentLink] * joint.origin;
+    const Eigen::Vector3d axis = frame.linear() * joint.axis;
+    const Eigen::Vector3d anchor = frame.translation();
+    dBodyID child = bodyOfGroup[joint.childLink];
+    dBodyID parent = bodyOfGroup[groups.groupOf[joint.parentLink]];  // null: the static base
+    const bool prismatic = joint.type == core::JointType::Prismatic;
+
+    // The child is ODE's body 1, so positive joint rates move the child along +axis,
+    // as the URDF convention does.
+    dJointID id = prismatic ? dJointCreateSlider(world_.world_, nullptr)
+                            : dJointCreateHinge(world_.world_, nullptr);
+    dJointAttach(id, child, parent);
+    if (prismatic) {
+      dJointSetSliderAxis(id, axis.x(), axis.y(), axis.z());
+      setLimitsAndMotor(id, joint, &dJointSetSliderParam);
+    } else {
+      dJointSetHingeAnchor(id, anchor.x(), anchor.y(), anchor.z());
+      dJointSetHingeAxis(id, axis.x(), axis.y(), axis.z());
+      setLimitsAndMotor(id, joint, &dJointSetHingeParam);
+    }
+    world_.actuators_.push_back({joint.name, id, joint.type, joint.maxVelocity});
+  }
+
+  static void setLimitsAndMotor(dJointID id, const core::Joint& joint,
+                                void (*setParam)(dJointID, int, dReal)) {
+    if (joint.type != core::JointType::Continuous) {
+      // Set high first: ODE ignores a low stop above the current high stop.
+      setParam(id, dParamHiStop, joint.upper);
+      setParam(id, dParamLoStop, joint.lower);
+    }
+    setParam(id, dParamFMax, joint.maxEffort);
+    setParam(id, dParamVel, 0.0);
+  }
+
+  void locateGoalLink(const core::Query& query, const LinkGroups& groups,
+                      const std::vector<int>& bodyIndexOfGroup) {
+    const KinematicModel& model = problem_.robot.model;
+    const int link = *model.findLink(query.goal.link);
+    const int top = groups.groupOf[link];
+    if (bodyIndexOfGroup[top] < 0)
+      throw core::InputError(query.goal.where, "goal link '" + query.goal.link +
+                                                   "' is fixed to the robot's base: it can "
+                                                   "never move to the goal");
+    WorldLayout& layout = world_.layout_;
+    layout.goalBody = bodyIndexOfGroup[top];
+    layout.goalLinkInBody = layout.bodies[layout.goalBody].linkInBody * groups.inGroup[link];
+  }
+
+  void buildObject(int index) {
+    const core::ObjectInstance& object = problem_.objects[index];
+    const LinkGroups groups(object.model);
+    const int root = object.model.rootLink;
+    const Eigen::Isometry3d home = object.home.isometry();
+    if (object.role == core::ObjectRole::Fixed) {
+      addGeoms(object.model, groups, root, GeomTag::Kind::Fixed, nullptr, home);
+      return;
+    }
+    const bool target = object.role == core::ObjectRole::Target;
+    BodyInfo info{object.name, target ? BodyRole::Target : BodyRole::Movable, index, {}};
+    createBody(object.model, groups, root, home, info,
+               target ? GeomTag::Kind::Target : GeomTag::Kind::Movable);
+  }
+
+  World& world_;
+  const core::Problem& problem_;
+};
+
+World::World(const core::Problem& problem, const core::Query& query)
+    : ode_(OdeLibrary::acquire()), settings_(problem.physics) {
+  try {
+    Builder(*this, problem).build(query);
+  } catch (...) {
+    destroy();  // the destructor does not run when a constructor throws
+    throw;
+  }
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,42 @@
+#include "kautham/physics/WorldLayout.h"
+
+namespace kautham::physics {
+
+Eigen::Vector3d WorldLayout::position(const double* state, std::size_t body) {
+  const double* p = state + body * kBodyStateSize + kPosition;
+  return {p[0], p[1], p[2]};
+}
+
+Eigen::Quaterniond WorldLayout::orientation(const double* state, std::size_t body) {
+  const double* q = state + body * kBodyStateSize + kOrientation;
+  return {q[0], q[1], q[2], q[3]};
+}
+
+Eigen::Vector3d WorldLayout::linearVelocity(const double* state, std::size_t body) {
+  const double* v = state + body * kBodyStateSize + kLinearVelocity;
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector3d WorldLayout::angularVelocity(const double* state, std::size_t body) {
+  const double* w = state + body * kBodyStateSize + kAngularVelocity;
+  return {w[0], w[1], w[2]};
+}
+
+unsigned WorldLayout::flags(const double* state) const {
+  return static_cast<unsigned>(state[flagsIndex()]);
+}
+
+Eigen::Isometry3d WorldLayout::linkPose(const double* state, std::size_t body) const {
+  Eigen::Isometry3d bodyPose = Eigen::Isometry3d::Identity();
+  bodyPose.linear() = orientation(state, body).normalized().toRotationMatrix();
+  bodyPose.translation() = position(state, body);
+  return bodyPose * bodies[body].linkInBody;
+}
+
+Eigen::Vector3d WorldLayout::goalLinkPosition(const double* state) const {
+  const std::size_t body = static_cast<std::size_t>(goalBody);
+  const Eigen::Vector3d offset = goalLinkInBody.translation();
+  return position(state, body) + orientation(state, body).normalized() * offset;
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,45 @@
+#include "kautham/physics/WorldStateSpace.h"
+
+namespace kautham::physics {
+
+WorldStateSpace::WorldStateSpace(std::shared_ptr<const WorldLayout> layout,
+                                 const Eigen::AlignedBox3d& region)
+    : RealVectorStateSpace(static_cast<unsigned>(layout->stateSize())), layout_(std::move(layout)) {
+  setName("World" + getName());
+  // Bounds only serve OMPL's uniform sampling (RRT-like planners sample end-effector targets);
+  // validity is decided by WorldValidityChecker, not by these boxes.
+  constexpr double kMaxSpeed = 10.0;
+  ompl::base::RealVectorBounds bounds(getDimension());
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
+    const std::size_t base = b * WorldLayout::kBodyStateSize;
+    for (int k = 0; k < 3; ++k) {
+      bounds.setLow(base + WorldLayout::kPosition + k, region.min()[k]);
+      bounds.setHigh(base + WorldLayout::kPosition + k, region.max()[k]);
+      bounds.setLow(base + WorldLayout::kLinearVelocity + k, -kMaxSpeed);
+      bounds.setHigh(base + WorldLayout::kLinearVelocity + k, kMaxSpeed);
+      bounds.setLow(base + WorldLayout::kAngularVelocity + k, -kMaxSpeed);
+      bounds.setHigh(base + WorldLayout::kAngularVelocity + k, kMaxSpeed);
+    }
+    for (int k = 0; k < 4; ++k) {
+      bounds.setLow(base + WorldLayout::kOrientation + k, -1.0);
+      bounds.setHigh(base + WorldLayout::kOrientation + k, 1.0);
+    }
+  }
+  bounds.setLow(layout_->flagsIndex(), 0.0);
+  bounds.setHigh(layout_->flagsIndex(), 0.0);
+  setBounds(bounds);
+}
+
+const double* WorldStateSpace::values(const ompl::base::State* state) {
+  return state->as<StateType>()->values;
+}
+
+double* WorldStateSpace::values(ompl::base::State* state) {
+  return state->as<StateType>()->values;
+}
+
+double WorldStateSpace::distance(const ompl::base::State* a, const ompl::base::State* b) const {
+  return (layout_->goalLinkPosition(values(a)) - layout_->goalLinkPosition(values(b))).norm();
+}
+
+}  // namespace kautham::physics

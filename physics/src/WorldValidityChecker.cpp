@@ -1,0 +1,85 @@
+#include "kautham/physics/WorldValidityChecker.h"
+
+#include "kautham/physics/WorldStateSpace.h"
+
+namespace kautham::physics {
+
+const char* toString(Violation violation) {
+  switch (violation) {
+    case Violation::None:
+      return "none";
+    case Violation::SimulationDiverged:
+      return "simulation diverged";
+    case Violation::RobotTouchedFixed:
+      return "robot touched a fixed obstacle";
+    case Violation::RobotTouchedTarget:
+      return "robot touched the target";
+    case Violation::TargetMoved:
+      return "target moved";
+    case Violation::OutsideWorkspace:
+      return "end effector left the workspace";
+    case Violation::ObjectTooFast:
+      return "object too fast";
+    case Violation::ObjectTilted:
+      return "object tilted";
+    case Violation::ObjectOffSupport:
+      return "object left the table";
+  }
+  return "?";
+}
+
+namespace {
+// An object whose centre drops this far below its start height has left the support surface.
+constexpr double kDropTolerance = 0.02;
+}  // namespace
+
+WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr& si,
+                                           std::shared_ptr<const WorldLayout> layout,
+                                           const core::Problem& problem, const double* startState)
+    : StateValidityChecker(si),
+      layout_(std::move(layout)),
+      limits_(problem.interaction),
+      workspace_(problem.workspace) {
+  if (auto support = problem.supportObject()) {
+    const Eigen::AlignedBox3d box = core::boundsAtHome(problem.objects[*support]);
+    hasSupport_ = true;
+    supportArea_ = Eigen::AlignedBox2d(box.min().head<2>(), box.max().head<2>());
+    supportTop_ = box.max().z();
+  }
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
+    if (layout_->bodies[b].role == BodyRole::Target) targetBody_ = b;
+  targetStart_ = WorldLayout::position(startState, targetBody_);
+}
+
+bool WorldValidityChecker::isValid(const ompl::base::State* state) const {
+  return check(WorldStateSpace::values(state)) == Violation::None;
+}
+
+Violation WorldValidityChecker::check(const double* state) const {
+  const unsigned flags = layout_->flags(state);
+  if (flags & kSimulationDiverged) return Violation::SimulationDiverged;
+  if (flags & kRobotTouchedFixed) return Violation::RobotTouchedFixed;
+  if (flags & kRobotTouchedTarget) return Violation::RobotTouchedTarget;
+  if ((WorldLayout::position(state, targetBody_) - targetStart_).norm() > limits_.targetTolerance)
+    return Violation::TargetMoved;
+  if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
+    if (layout_->bodies[b].role == BodyRole::Movable)
+      if (Violation v = checkObject(state, b); v != Violation::None) return v;
+  return Violation::None;
+}
+
+Violation WorldValidityChecker::checkObject(const double* state, std::size_t body) const {
+  if (WorldLayout::linearVelocity(state, body).norm() > limits_.maxObjectSpeed)
+    return Violation::ObjectTooFast;
+  if (core::tiltAngle(WorldLayout::orientation(state, body)) > limits_.maxTilt)
+    return Violation::ObjectTilted;
+  if (hasSupport_) {
+    const Eigen::Vector3d p = WorldLayout::position(state, body);
+    if (!supportArea_.contains(p.head<2>()) || p.z() < supportTop_ - kDropTolerance)
+      return Violation::ObjectOffSupport;
+  }
+  return Violation::None;
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "kautham/physics/Replay.h"
+#include "kautham/planners/PlanRequest.h"
+
+namespace kautham::planners {
+
+/// A snapshot of a running planner, for progress displays.
+struct Progress {
+  double elapsed = 0.0;  ///< seconds
+  std::uint64_t propagations = 0;
+  std::uint64_t physicsSteps = 0;
+};
+
+struct SolveHooks {
+  std::function<void(const Progress&)> progress;  ///< called about twice a second
+  std::function<bool()> stop;                     ///< true: stop planning now (Ctrl-C)
+};
+
+struct PlanStatistics {
+  double planningTime = 0.0;  ///< seconds of wall-clock time in the planner
+  std::size_t treeStates = 0;
+  std::uint64_t propagations = 0;
+  std::uint64_t physicsSteps = 0;
+};
+
+struct PlanOutcome {
+  bool solved = false;  ///< an exact solution: the goal region was reached
+  bool approximate = false;
+  double goalDistance = 0.0;
+  std::vector<physics::ControlStep> controls;
+  PlanStatistics statistics;
+};
+
+/// Seeds every random number generator the planners use (OMPL's), before anything samples.
+/// Seed 0 means "pick one": the seed in use is returned either way.
+std::uint32_t seedRandomness(std::uint32_t seed);
+
+/// Runs the requested planner on a context until it solves, the time limit passes or
+/// `hooks.stop` says so. Deterministic for a seed when it solves before the limit.
+PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
+                  const SolveHooks& hooks = {});
+
+}  // namespace kautham::planners

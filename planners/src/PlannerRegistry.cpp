@@ -1,0 +1,14 @@
+#include "kautham/planners/PlannerRegistry.h"
+
+namespace kautham::planners {
+
+PlannerRegistry& plannerRegistry() {
+  static PlannerRegistry registry = [] {
+    PlannerRegistry builtins;
+    registerOmplControlPlanners(builtins);
+    return builtins;
+  }();
+  return registry;
+}
+
+}  // namespace kautham::planners

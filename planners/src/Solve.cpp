@@ -1,0 +1,104 @@
+#include "kautham/planners/Solve.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/PlannerTerminationCondition.h>
+#include <ompl/control/PathControl.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+#include <ompl/util/Console.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "kautham/planners/PlannerRegistry.h"
+
+namespace kautham::planners {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::vector<physics::ControlStep> controlsOf(const ompl::control::PathControl& path,
+                                            std::size_t controlCount, double stepSize) {
+  std::vector<physics::ControlStep> steps;
+  for (std::size_t i = 0; i < path.getControlCount(); ++i) {
+    const auto* values =
+        path.getControl(i)->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
+    const double duration = path.getControlDuration(i);
+    steps.push_back({std::vector<double>(values, values + controlCount),
+                     static_cast<unsigned>(std::lround(duration / stepSize))});
+  }
+  return steps;
+}
+
+/// Stops the planner when asked to, and reports progress on the way.
+ompl::base::PlannerTerminationCondition watcher(const physics::PlanningContext& context,
+                                               const SolveHooks& hooks, Clock::time_point start) {
+  auto lastReport = std::make_shared<double>(0.0);
+  return ompl::base::PlannerTerminationCondition([&context, hooks, start, lastReport] {
+    if (hooks.progress) {
+      const double elapsed = secondsSince(start);
+      if (elapsed - *lastReport >= 0.5) {
+        *lastReport = elapsed;
+        const auto& counters = context.propagator().counters();
+        hooks.progress({elapsed, counters.propagations, counters.physicsSteps});
+      }
+    }
+    return hooks.stop && hooks.stop();
+  });
+}
+
+}  // namespace
+
+std::uint32_t seedRandomness(std::uint32_t seed) {
+  if (seed == 0) return ompl::RNG::getSeed();
+  // OMPL complains when it is reseeded after generators exist (tests plan several times in one
+  // process); reseeding still fixes every generator made afterwards, which is all we need.
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
+  ompl::RNG::setSeed(seed);
+  ompl::msg::setLogLevel(level);
+  return seed;
+}
+
+PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
+                  const SolveHooks& hooks) {
+  const PlannerRegistry::Entry& entry = plannerRegistry().at(request.planner);
+  ompl::base::PlannerPtr planner = entry.create(request.parameters, context);
+  context.problemDefinition()->clearSolutionPaths();
+  planner->setProblemDefinition(context.problemDefinition());
+  planner->setup();
+
+  const physics::PropagationCounters before = context.propagator().counters();
+  const Clock::time_point start = Clock::now();
+  const ompl::base::PlannerStatus status = planner->solve(ompl::base::plannerOrTerminationCondition(
+      ompl::base::timedPlannerTerminationCondition(request.timeLimit()),
+      watcher(context, hooks, start)));
+
+  PlanOutcome outcome;
+  outcome.statistics.planningTime = secondsSince(start);
+  const physics::PropagationCounters after = context.propagator().counters();
+  outcome.statistics.propagations = after.propagations - before.propagations;
+  outcome.statistics.physicsSteps = after.physicsSteps - before.physicsSteps;
+  ompl::base::PlannerData data(context.spaceInformation());
+  planner->getPlannerData(data);
+  outcome.statistics.treeStates = data.numVertices();
+
+  const auto& pdef = context.problemDefinition();
+  if (pdef->hasSolution()) {
+    outcome.solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;
+    outcome.approximate = !outcome.solved;
+    outcome.goalDistance = pdef->getSolutionDifference();
+    const auto& path = static_cast<const ompl::control::PathControl&>(*pdef->getSolutionPath());
+    const auto& si = context.spaceInformation();
+    outcome.controls =
+        controlsOf(path, si->getControlSpace()->getDimension(), si->getPropagationStepSize());
+  }
+  return outcome;
+}
+
+}  // namespace kautham::planners
