@@ -1,7 +1,9 @@
 #include "kautham/core/ProblemLoader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <set>
 
 #include "XmlReader.h"
@@ -15,18 +17,28 @@ using tinyxml2::XMLElement;
 namespace fs = std::filesystem;
 
 /// Kautham's physics parameter names, accepted inside <Parameters> for compatibility:
-/// they set the <Physics> block rather than the planner.
+/// they set the <Physics> block rather than the planner, with the same checks.
 bool applyKauthamPhysicsParameter(const PlannerParameter& p, PhysicsSettings& physics,
                                   const XmlReader& xml, const XMLElement& element) {
-  auto number = [&] { return xml.numbersInText(element).at(0); };
-  if (p.name == "Max Contacts")
-    physics.maxContacts = static_cast<int>(number());
-  else if (p.name == "Error Reduction Parameter")
-    physics.erp = number();
-  else if (p.name == "Constraint Force Mixing")
-    physics.cfm = number();
-  else
+  auto number = [&](double min, double max, const char* range) {
+    const std::vector<double> values = xml.numbersInText(element);
+    if (values.size() != 1 || values[0] < min || values[0] > max)
+      xml.fail(element, "parameter '" + p.name + "' must be one number in " + range + ", got '" +
+                            p.value + "'");
+    return values[0];
+  };
+  if (p.name == "Max Contacts") {
+    const double value = number(1, 64, "[1, 64]");
+    if (value != std::floor(value))
+      xml.fail(element, "parameter 'Max Contacts' must be a whole number, got '" + p.value + "'");
+    physics.maxContacts = static_cast<int>(value);
+  } else if (p.name == "Error Reduction Parameter") {
+    physics.erp = number(0, 1, "[0, 1]");
+  } else if (p.name == "Constraint Force Mixing") {
+    physics.cfm = number(0, std::numeric_limits<double>::infinity(), "[0, inf)");
+  } else {
     return false;
+  }
   return true;
 }
 
@@ -50,6 +62,9 @@ class ProblemReader {
       readTopLevel(*e);
     if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
     if (!plannerElement_) xml_.fail(root, "the problem has no <Planner> block");
+    // Read last, wherever it stands: <Init> needs the robot, and Kautham's physics parameters
+    // override the <Physics> block.
+    readPlanner(*plannerElement_);
     check(root);
     return std::move(problem_);
   }
@@ -68,7 +83,7 @@ class ProblemReader {
     else if (tag == "Workspace")
       readWorkspace(e);
     else if (tag == "Planner")
-      readPlanner(e);
+      setPlannerElement(e);
     else if (tag == "Controls")
       xml_.fail(e, "<Controls> (Kautham control sets) is not supported yet: remove it to get one "
                    "control per movable joint");
@@ -206,9 +221,13 @@ class ProblemReader {
       xml_.fail(e, "<Workspace> needs min < max on every axis");
   }
 
-  void readPlanner(const XMLElement& e) {
+  void setPlannerElement(const XMLElement& e) {
     if (plannerElement_) xml_.fail(e, "only one <Planner> block is supported");
     plannerElement_ = &e;
+  }
+
+  void readPlanner(const XMLElement& e) {
+    xml_.allowChildren(e, {"Parameters", "Queries"});
     problem_.planner.where = xml_.at(e);
     const XMLElement* parameters = e.FirstChildElement("Parameters");
     if (!parameters) xml_.fail(e, "<Planner> needs a <Parameters> block with a <Name>");
@@ -221,6 +240,7 @@ class ProblemReader {
   }
 
   void readParameters(const XMLElement& parameters) {
+    xml_.allowChildren(parameters, {"Name", "Parameter"});
     const XMLElement* name = parameters.FirstChildElement("Name");
     if (!name || xml_.elementText(*name).empty())
       xml_.fail(parameters, "<Parameters> needs <Name>PlannerName</Name>");
@@ -238,6 +258,7 @@ class ProblemReader {
     if (std::strcmp(q.Name(), "Query") != 0)
       xml_.fail(q, std::string("unexpected <") + q.Name() + "> inside <Queries>; expected <Query>");
     xml_.allowAttributes(q, {"name"});
+    xml_.allowChildren(q, {"Init", "Goal", "GoalRegion"});
     Query query;
     query.where = xml_.at(q);
     query.name = xml_.optionalText(q, "name").value_or("query" +
@@ -296,11 +317,18 @@ class ProblemReader {
   }
 
   void checkObjects(const XMLElement& root) const {
-    const auto targets = std::count_if(problem_.objects.begin(), problem_.objects.end(),
-                                       [](auto& o) { return o.role == ObjectRole::Target; });
-    if (targets != 1)
-      xml_.fail(root, "the problem needs exactly one <Obstacle role=\"target\">, found " +
-                          std::to_string(targets));
+    const ObjectInstance* target = nullptr;
+    for (const ObjectInstance& object : problem_.objects) {
+      if (object.role != ObjectRole::Target) continue;
+      if (target)
+        throw InputError(object.where, "a second target '" + object.name +
+                                           "': the problem needs exactly one <Obstacle "
+                                           "role=\"target\">, and '" +
+                                           target->name + "' is one already");
+      target = &object;
+    }
+    if (!target)
+      xml_.fail(root, "the problem needs exactly one <Obstacle role=\"target\">, found none");
     for (const ObjectInstance& object : problem_.objects) {
       if (object.role == ObjectRole::Fixed) continue;
       double mass = 0.0;

@@ -11,7 +11,10 @@ XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(file_, ignored))
     throw InputError({file_, 0}, "cannot read the file: it does not exist or is not a file");
-  if (document_.LoadFile(file_.c_str()) != tinyxml2::XML_SUCCESS) {
+  const tinyxml2::XMLError status = document_.LoadFile(file_.c_str());
+  if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT)
+    throw InputError({file_, 1}, "the file is empty: expected an XML document");
+  if (status != tinyxml2::XML_SUCCESS) {
     const char* detail = document_.ErrorStr();
     throw InputError({file_, document_.ErrorLineNum()},
                      std::string("malformed XML: ") + (detail ? detail : "unknown error"));
@@ -45,6 +48,20 @@ void XmlReader::allowAttributes(const tinyxml2::XMLElement& element,
     for (const char* name : allowed) list += (list.empty() ? "" : ", ") + std::string(name);
     fail(element, std::string("<") + element.Name() + "> has no attribute '" + a->Name() +
                       "'; allowed: " + (list.empty() ? "none" : list));
+  }
+}
+
+void XmlReader::allowChildren(const tinyxml2::XMLElement& element,
+                              std::initializer_list<const char*> allowed) const {
+  for (const tinyxml2::XMLElement* c = element.FirstChildElement(); c;
+       c = c->NextSiblingElement()) {
+    bool known = false;
+    for (const char* name : allowed) known = known || std::strcmp(c->Name(), name) == 0;
+    if (known) continue;
+    std::string list;
+    for (const char* name : allowed) list += (list.empty() ? "<" : ", <") + std::string(name) + ">";
+    fail(*c, std::string("unexpected <") + c->Name() + "> inside <" + element.Name() +
+                 ">; expected " + list);
   }
 }
 

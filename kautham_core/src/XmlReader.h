@@ -30,6 +30,9 @@ class XmlReader {
   /// Rejects attributes other than `allowed` (catches typos such as maxTilts="...").
   void allowAttributes(const tinyxml2::XMLElement& element,
                        std::initializer_list<const char*> allowed) const;
+  /// Rejects child elements other than `allowed` (catches typos such as <Paramter>).
+  void allowChildren(const tinyxml2::XMLElement& element,
+                     std::initializer_list<const char*> allowed) const;
 
   std::optional<std::string> optionalText(const tinyxml2::XMLElement& element,
                                           const char* attribute) const;

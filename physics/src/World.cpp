@@ -35,6 +35,7 @@ void World::readState(double* state) const {
 }
 
 void World::writeState(const double* state) {
+  restoreGeomOrder();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const double* s = state + i * WorldLayout::kBodyStateSize;
     dBodySetPosition(bodies_[i], s[0], s[1], s[2]);
@@ -45,6 +46,15 @@ void World::writeState(const double* state) {
     dBodySetLinearVel(bodies_[i], s[7], s[8], s[9]);
     dBodySetAngularVel(bodies_[i], s[10], s[11], s[12]);
   }
+}
+
+void World::restoreGeomOrder() {
+  // ODE moves a geometry to the front of its space's list when it becomes dirty, and a step
+  // dirties bodies island by island: the order of the list, hence of contacts and of the
+  // solver's constraints, would carry the previous step's contacts into the next. Re-adding
+  // the dynamic geometries in a fixed order makes every run from a written state the same.
+  for (dGeomID geom : dynamicGeoms_) dSpaceRemove(space_, geom);
+  for (dGeomID geom : dynamicGeoms_) dSpaceAdd(space_, geom);
 }
 
 void World::setJointVelocities(const double* velocities) {

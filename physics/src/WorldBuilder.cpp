@@ -145,6 +145,7 @@ class World::Builder {
         dMatrix3 rotation;
         toOdeRotation(pose.linear(), rotation);
         if (body) {
+          world_.dynamicGeoms_.push_back(geom);
           dGeomSetBody(geom, body);
           dGeomSetOffsetPosition(geom, pose.translation().x(), pose.translation().y(),
                                  pose.translation().z());

@@ -29,7 +29,8 @@ const char* toString(Violation violation) {
 }
 
 namespace {
-// An object whose centre drops this far below its start height has left the support surface.
+// An object whose centre drops this far below its start height has left the support surface
+// (fallen off its edge, or through it).
 constexpr double kDropTolerance = 0.02;
 }  // namespace
 
@@ -44,10 +45,12 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
     const Eigen::AlignedBox3d box = core::boundsAtHome(problem.objects[*support]);
     hasSupport_ = true;
     supportArea_ = Eigen::AlignedBox2d(box.min().head<2>(), box.max().head<2>());
-    supportTop_ = box.max().z();
   }
-  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
+  startHeights_.resize(layout_->bodies.size());
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
+    startHeights_[b] = WorldLayout::position(startState, b).z();
     if (layout_->bodies[b].role == BodyRole::Target) targetBody_ = b;
+  }
   targetStart_ = WorldLayout::position(startState, targetBody_);
 }
 
@@ -74,11 +77,9 @@ Violation WorldValidityChecker::checkObject(const double* state, std::size_t bod
     return Violation::ObjectTooFast;
   if (core::tiltAngle(WorldLayout::orientation(state, body)) > limits_.maxTilt)
     return Violation::ObjectTilted;
-  if (hasSupport_) {
-    const Eigen::Vector3d p = WorldLayout::position(state, body);
-    if (!supportArea_.contains(p.head<2>()) || p.z() < supportTop_ - kDropTolerance)
-      return Violation::ObjectOffSupport;
-  }
+  const Eigen::Vector3d p = WorldLayout::position(state, body);
+  if (p.z() < startHeights_[body] - kDropTolerance) return Violation::ObjectOffSupport;
+  if (hasSupport_ && !supportArea_.contains(p.head<2>())) return Violation::ObjectOffSupport;
   return Violation::None;
 }
 

@@ -1,1 +1,125 @@
+// Each constraint of the validity checker, violated and not violated, on real scenes.
+
+#include <cmath>
+
 #include <gtest/gtest.h>
+
+#include "physics/PhysicsTestSupport.h"
+
+namespace kautham::physics {
+namespace {
+
+using test::ContextFixture;
+
+TEST(ValidityTest, StartStatesOfTheShippedProblemsAreValid) {
+  for (const char* file : {"problems/pusher_cans_5.xml", "problems/pusher_free.xml",
+                           "tests/data/pusher_wall.xml"}) {
+    ContextFixture scene(file);
+    EXPECT_EQ(scene.context.startViolation(), Violation::None) << file;
+    EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None) << file;
+  }
+}
+
+TEST(ValidityTest, RobotTouchingAFixedWallIsInvalid) {
+  ContextFixture scene("tests/data/pusher_wall.xml");
+  // The wall stands 15 cm ahead of the palm: driving forward must hit it, and nothing else.
+  EXPECT_EQ(scene.drive({0.0, 0.2, 0.0}, 40), Violation::RobotTouchedFixed);
+  EXPECT_LT(scene.state[0], 1.0);  // it stopped there: the state is the one that touched
+}
+
+TEST(ValidityTest, RobotMovingAlongsideAWallIsValid) {
+  ContextFixture scene("tests/data/pusher_wall.xml");
+  EXPECT_EQ(scene.drive({0.2, 0.0, 0.0}, 10), Violation::None);  // sideways, away from it
+}
+
+TEST(ValidityTest, RobotTouchingTheTargetIsInvalid) {
+  ContextFixture scene("problems/pusher_free.xml");
+  EXPECT_EQ(scene.drive({0.0, 0.25, 0.0}, 60), Violation::RobotTouchedTarget);
+}
+
+TEST(ValidityTest, RobotPushingAMovableCanIsValid) {
+  ContextFixture scene("tests/data/pusher_wall.xml");
+  // can1 stands at x = 0.35 beside the wall; sweep sideways into it.
+  const Eigen::Vector3d before = WorldLayout::position(scene.state.data(), scene.body("can1"));
+  EXPECT_EQ(scene.drive({0.0, 0.2, 0.0}, 4), Violation::None);  // forward ~5 cm: clear of wall
+  EXPECT_EQ(scene.drive({0.25, 0.0, 0.0}, 30), Violation::None);  // 37 cm to the right
+  const Eigen::Vector3d after = WorldLayout::position(scene.state.data(), scene.body("can1"));
+  EXPECT_GT((after - before).norm(), 0.03);
+}
+
+TEST(ValidityTest, TargetMovedBeyondToleranceIsInvalid) {
+  ContextFixture scene("problems/pusher_cans_5.xml");
+  double* glass = scene.bodyState("glass");
+  glass[0] += 0.004;  // within the 5 mm tolerance
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  glass[0] += 0.002;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::TargetMoved);
+}
+
+TEST(ValidityTest, FastObjectIsInvalid) {
+  ContextFixture scene("problems/pusher_cans_5.xml");
+  double* can = scene.bodyState("can3");
+  can[WorldLayout::kLinearVelocity] = 0.9;  // limit 1.0 m/s
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  can[WorldLayout::kLinearVelocity] = 1.1;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::ObjectTooFast);
+}
+
+TEST(ValidityTest, TiltedObjectIsInvalid) {
+  ContextFixture scene("problems/pusher_cans_5.xml");
+  auto tilt = [&](double angle) {
+    const Eigen::Quaterniond q(Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitX()));
+    double* can = scene.bodyState("can2");
+    can[3] = q.w();
+    can[4] = q.x();
+    can[5] = q.y();
+    can[6] = q.z();
+    return scene.context.validityChecker().check(scene.state.data());
+  };
+  EXPECT_EQ(tilt(0.30), Violation::None);  // limit 0.35 rad
+  EXPECT_EQ(tilt(0.40), Violation::ObjectTilted);
+}
+
+TEST(ValidityTest, ObjectOffTheTableIsInvalid) {
+  ContextFixture scene("problems/pusher_cans_5.xml");
+  double* can = scene.bodyState("can5");
+  can[0] = 0.59;  // the table top spans x in [-0.6, 0.6]
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  can[0] = 0.61;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
+            Violation::ObjectOffSupport);
+  can[0] = 0.0;
+  can[2] -= 0.01;  // settling into the table a little is fine
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  can[2] -= 0.02;  // fell through: well below its resting height
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
+            Violation::ObjectOffSupport);
+}
+
+TEST(ValidityTest, EndEffectorOutsideTheWorkspaceIsInvalid) {
+  ContextFixture scene("problems/pusher_free.xml");
+  // The x joint reaches 0.5 m but the workspace stops at 0.55 m: the gripper origin at 0.5
+  // is inside; its body moved beyond the workspace is not.
+  double* gripper = scene.bodyState("pusher/gripper");
+  gripper[0] = 0.5;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  gripper[0] = 0.6;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
+            Violation::OutsideWorkspace);
+}
+
+TEST(ValidityTest, SimulationBlowUpIsDetectedAndRejected) {
+  ContextFixture scene("problems/pusher_cans_5.xml");
+  scene.bodyState("can4")[WorldLayout::kLinearVelocity] = std::nan("");
+  EXPECT_EQ(scene.drive({0.0, 0.0, 0.0}, 1), Violation::SimulationDiverged);
+  EXPECT_TRUE(scene.context.layout().flags(scene.state.data()) & kSimulationDiverged);
+}
+
+TEST(ValidityTest, RunawaySpeedIsDetectedAsBlowUp) {
+  ContextFixture scene("problems/pusher_cans_5.xml");
+  scene.bodyState("can4")[WorldLayout::kLinearVelocity + 2] = 1e6;  // a kick no push can give
+  EXPECT_EQ(scene.drive({0.0, 0.0, 0.0}, 1), Violation::SimulationDiverged);
+}
+
+}  // namespace
+}  // namespace kautham::physics

@@ -47,7 +47,7 @@ struct ObjectInstance : ModelInstance {
 struct PhysicsSettings {
   double stepSize = 0.01;  ///< seconds per physics step
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};
-  int maxContacts = 4;        ///< contact points per pair of touching geometries
+  int maxContacts = 8;  ///< contact points per pair; fewer than 8 lets resting cylinders creep
   int solverIterations = 20;  ///< iterations of ODE's QuickStep solver
   double friction = 0.6;      ///< Coulomb friction coefficient mu
   double erp = 0.2;           ///< contact error reduction parameter

@@ -67,6 +67,7 @@ class World {
   void collide(dGeomID a, dGeomID b);
   bool diverged() const;
   void destroy();
+  void restoreGeomOrder();
 
   std::shared_ptr<OdeLibrary> ode_;
   core::PhysicsSettings settings_;
@@ -74,7 +75,8 @@ class World {
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;
   dJointGroupID contactGroup_ = nullptr;
-  std::vector<dBodyID> bodies_;  ///< parallel to layout_.bodies
+  std::vector<dBodyID> bodies_;        ///< parallel to layout_.bodies
+  std::vector<dGeomID> dynamicGeoms_;  ///< geometries on bodies, in creation order
   std::vector<Actuator> actuators_;
   std::vector<std::unique_ptr<GeomTag>> tags_;
   std::vector<dContact> contactBuffer_;

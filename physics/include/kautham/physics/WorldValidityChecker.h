@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include <ompl/base/StateValidityChecker.h>
 
@@ -43,8 +44,8 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   core::InteractionConstraints limits_;
   Eigen::AlignedBox3d workspace_;
   bool hasSupport_ = false;
-  Eigen::AlignedBox2d supportArea_;  ///< top face of the support, in x and y
-  double supportTop_ = 0.0;          ///< height of the support's top face
+  Eigen::AlignedBox2d supportArea_;   ///< top face of the support, in x and y
+  std::vector<double> startHeights_;  ///< per body: height of its centre at the start
   std::size_t targetBody_ = 0;
   Eigen::Vector3d targetStart_;
 };

@@ -1,0 +1,62 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "TestPaths.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/physics/PlanningContext.h"
+
+namespace kautham::test {
+
+/// A planning context on a real problem file, with helpers to drive the robot through the
+/// real propagator and to edit states.
+class ContextFixture {
+ public:
+  explicit ContextFixture(const std::string& problemFile)
+      : problem(core::loadProblem(repoFile(problemFile))),
+        context(problem, 0, physics::PropagationSettings{}),
+        state(context.startState()) {}
+
+  std::size_t body(const std::string& name) const {
+    const auto& bodies = context.layout().bodies;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+      if (bodies[b].name == name) return b;
+    throw std::runtime_error("no body named " + name);
+  }
+
+  /// Applies joint velocities for `steps` propagation steps, one propagate call each, and
+  /// returns the first violation met (stopping there), or Violation::None.
+  physics::Violation drive(const std::vector<double>& velocities, unsigned steps) {
+    const auto& si = context.spaceInformation();
+    ompl::base::State* from = si->allocState();
+    ompl::base::State* to = si->allocState();
+    ompl::control::Control* control = si->allocControl();
+    std::copy(velocities.begin(), velocities.end(),
+              control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+    physics::Violation violation = physics::Violation::None;
+    for (unsigned i = 0; i < steps && violation == physics::Violation::None; ++i) {
+      std::copy(state.begin(), state.end(), physics::WorldStateSpace::values(from));
+      context.propagator().propagate(from, control, si->getPropagationStepSize(), to);
+      const double* values = physics::WorldStateSpace::values(to);
+      state.assign(values, values + state.size());
+      violation = context.validityChecker().check(state.data());
+    }
+    si->freeControl(control);
+    si->freeState(from);
+    si->freeState(to);
+    return violation;
+  }
+
+  double* bodyState(const std::string& name) {
+    return state.data() + body(name) * physics::WorldLayout::kBodyStateSize;
+  }
+
+  core::Problem problem;
+  physics::PlanningContext context;
+  std::vector<double> state;
+};
+
+}  // namespace kautham::test
