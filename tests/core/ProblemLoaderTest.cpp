@@ -223,8 +223,8 @@ TEST_F(PusherCans5, Interaction) {
 }
 
 TEST_F(PusherCans5, Workspace) {
-  EXPECT_TRUE(problem().workspace.min().isApprox(Eigen::Vector3d(-0.55, -0.4, 0.76)));
-  EXPECT_TRUE(problem().workspace.max().isApprox(Eigen::Vector3d(0.55, 0.38, 0.79)));
+  EXPECT_TRUE(problem().workspace.min().isApprox(Eigen::Vector3d(-0.45, -0.36, 0.76)));
+  EXPECT_TRUE(problem().workspace.max().isApprox(Eigen::Vector3d(0.45, 0.36, 0.79)));
 }
 
 TEST_F(PusherCans5, PlannerAndItsParameters) {
@@ -249,11 +249,11 @@ TEST_F(PusherCans5, OneQueryWithInitAndGoalRegion) {
   ASSERT_EQ(problem().queries.size(), 1u);
   const Query& query = problem().queries[0];
   EXPECT_EQ(query.name, "pregrasp");
-  EXPECT_EQ(query.init, (std::vector<double>{0.5, 0.0, 0.5}));
+  EXPECT_EQ(query.init, (std::vector<double>{0.5, 0.125, 0.5}));
   EXPECT_EQ(query.goal.link, "gripper");
   EXPECT_EQ(query.goal.relativeTo, "glass");
   EXPECT_TRUE(query.goal.offset.isApprox(Eigen::Vector3d(0, -0.09, -0.05)));
-  EXPECT_DOUBLE_EQ(query.goal.tolerance, 0.02);
+  EXPECT_DOUBLE_EQ(query.goal.tolerance, 0.03);
   EXPECT_EQ(query.goal.where.line, lineOf(textOfCans5(), "<GoalRegion "));
   // The goal is the glass's home plus the offset, and lies in the workspace.
   const Eigen::Vector3d goal = problem().goalPosition(query.goal);
@@ -329,7 +329,7 @@ TEST_F(ProblemVariant, ElementOrderDoesNotMatter) {
   ASSERT_LT(text.find("<Planner>"), text.find("<Physics "));
   const Problem problem = load(text);
   ASSERT_EQ(problem.queries.size(), 1u);
-  EXPECT_EQ(problem.queries[0].init, (std::vector<double>{0.5, 0.0, 0.5}));
+  EXPECT_EQ(problem.queries[0].init, (std::vector<double>{0.5, 0.125, 0.5}));
   EXPECT_EQ(problem.physics.maxContacts, 12);
   EXPECT_EQ(problem.planner.name, "KPIECE");
 }
@@ -344,7 +344,7 @@ TEST_F(ProblemVariant, ValuesOtherThanTheDefaultsAreRead) {
                         R"(maxDisplacement="0.1" maxTilt="0.2" targetTolerance="0.01"/>)");
   text = replaceOnce(text, R"(<KauthamName name="can1"/>)",
                      R"(<KauthamName name="can1"/><Uncertainty x="0.01" y="0.02" yaw="0.1"/>)");
-  text = replaceOnce(text, R"(tolerance="0.02")", R"(tolerance="0.03")");
+  text = replaceOnce(text, R"(tolerance="0.03")", R"(tolerance="0.05")");
   const Problem problem = load(text);
   EXPECT_DOUBLE_EQ(problem.physics.stepSize, 0.005);
   EXPECT_TRUE(problem.physics.gravity.isApprox(Eigen::Vector3d(0, 0, -1.62)));
@@ -362,7 +362,7 @@ TEST_F(ProblemVariant, ValuesOtherThanTheDefaultsAreRead) {
   EXPECT_DOUBLE_EQ(can1.uncertainty.y, 0.02);
   EXPECT_DOUBLE_EQ(can1.uncertainty.yaw, 0.1);
   EXPECT_DOUBLE_EQ(problem.objects.at(*problem.findObject("can2")).uncertainty.x, 0.0);
-  EXPECT_DOUBLE_EQ(problem.queries.at(0).goal.tolerance, 0.03);
+  EXPECT_DOUBLE_EQ(problem.queries.at(0).goal.tolerance, 0.05);
 }
 
 TEST_F(ProblemVariant, ObstacleWithoutRoleIsFixed) {

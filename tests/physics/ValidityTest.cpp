@@ -39,10 +39,10 @@ TEST(ValidityTest, RobotTouchingTheTargetIsInvalid) {
 
 TEST(ValidityTest, RobotPushingAMovableCanIsValid) {
   ContextFixture scene("tests/data/pusher_wall.xml");
-  // can1 stands at x = 0.35 beside the wall; sweep sideways into it.
+  // can1 stands at x = 0.35 beside the wall: move over to it, then push it with the palm.
   const Eigen::Vector3d before = WorldLayout::position(scene.state.data(), scene.body("can1"));
-  EXPECT_EQ(scene.drive({0.0, 0.2, 0.0}, 4), Violation::None);  // forward ~5 cm: clear of wall
-  EXPECT_EQ(scene.drive({0.25, 0.0, 0.0}, 30), Violation::None);  // 37 cm to the right
+  EXPECT_EQ(scene.drive({0.25, 0.0, 0.0}, 28), Violation::None);  // 35 cm to the right
+  EXPECT_EQ(scene.drive({0.0, 0.2, 0.0}, 16), Violation::None);   // 16 cm forward, into it
   const Eigen::Vector3d after = WorldLayout::position(scene.state.data(), scene.body("can1"));
   EXPECT_GT((after - before).norm(), 0.03);
 }
@@ -98,12 +98,12 @@ TEST(ValidityTest, ObjectOffTheTableIsInvalid) {
 
 TEST(ValidityTest, EndEffectorOutsideTheWorkspaceIsInvalid) {
   ContextFixture scene("problems/pusher_free.xml");
-  // The x joint reaches 0.5 m but the workspace stops at 0.55 m: the gripper origin at 0.5
-  // is inside; its body moved beyond the workspace is not.
+  // The workspace stops at x = 0.45, inside the x joint's reach (0.5): its stops are never
+  // part of a valid plan.
   double* gripper = scene.bodyState("pusher/gripper");
-  gripper[0] = 0.5;
+  gripper[0] = 0.44;
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
-  gripper[0] = 0.6;
+  gripper[0] = 0.46;
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
             Violation::OutsideWorkspace);
 }
