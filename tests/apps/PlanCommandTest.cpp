@@ -1,1 +1,126 @@
+// The `kautham` program as a user runs it: exit codes, messages, the plan file.
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "TestPaths.h"
+
+namespace kautham::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int exitCode = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+CommandRun kautham(const std::string& arguments) {
+  const std::string command =
+      "cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY + "' " + arguments + " 2>&1";
+  CommandRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+nlohmann::json readJson(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+class PlanCommandTest : public ::testing::Test {
+ protected:
+  fs::path folder = fs::temp_directory_path() /
+                    ("kautham_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                     "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  void SetUp() override { fs::create_directories(folder); }
+  void TearDown() override { fs::remove_all(folder); }
+};
+
+TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
+  const fs::path planFile = folder / "plan.json";
+  const CommandRun run = kautham("plan problems/pusher_cans_5.xml --seed 1 -o " + planFile.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("solved    yes"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("reaches the goal"), std::string::npos) << run.output;
+
+  const nlohmann::json plan = readJson(planFile);
+  EXPECT_EQ(plan["format"], "kautham-plan");
+  EXPECT_EQ(plan["planner"]["name"], "KPIECE");
+  EXPECT_EQ(plan["seed"], 1);
+  EXPECT_TRUE(plan["result"]["solved"].get<bool>());
+  EXPECT_TRUE(plan["result"]["replay"]["reached_goal"].get<bool>());
+  EXPECT_FALSE(plan["result"]["replay"]["moved_objects"].empty());
+  EXPECT_FALSE(plan["controls"].empty());
+  // One pose per body per frame, frames one propagation step apart.
+  const std::size_t bodies = plan["bodies"].size();
+  EXPECT_EQ(bodies, 9u);
+  for (const auto& frame : plan["frames"]) EXPECT_EQ(frame["poses"].size(), bodies);
+  EXPECT_GT(plan["statistics"]["physics_steps"].get<long>(), 0);
+}
+
+TEST_F(PlanCommandTest, SameCommandTwiceGivesTheSamePlanFile) {
+  const fs::path a = folder / "a.json";
+  const fs::path b = folder / "b.json";
+  ASSERT_EQ(kautham("plan problems/pusher_cans_5.xml --seed 2 -o " + a.string()).exitCode, 0);
+  ASSERT_EQ(kautham("plan problems/pusher_cans_5.xml --seed 2 -o " + b.string()).exitCode, 0);
+  nlohmann::json first = readJson(a);
+  nlohmann::json second = readJson(b);
+  first.erase("timing");
+  second.erase("timing");
+  EXPECT_EQ(first, second);
+}
+
+TEST_F(PlanCommandTest, MalformedProblemExitsTwoNamingFileAndLine) {
+  const CommandRun run = kautham("plan tests/data/malformed/unknown_role.xml --model-dir models");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.output.find("unknown_role.xml:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("unknown role"), std::string::npos) << run.output;
+}
+
+TEST_F(PlanCommandTest, MissingProblemFileExitsTwo) {
+  const CommandRun run = kautham("plan no/such/problem.xml");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.output.find("no/such/problem.xml"), std::string::npos) << run.output;
+}
+
+TEST_F(PlanCommandTest, UnknownParameterOrPlannerExitsTwo) {
+  EXPECT_EQ(kautham("plan problems/pusher_free.xml --set goal_bais=0.1").exitCode, 2);
+  EXPECT_EQ(kautham("plan problems/pusher_free.xml --set goal_bias=7").exitCode, 2);
+  EXPECT_EQ(kautham("plan problems/pusher_free.xml --planner NoSuchPlanner").exitCode, 2);
+  EXPECT_EQ(kautham("plan problems/pusher_free.xml --no-such-flag").exitCode, 2);
+}
+
+TEST_F(PlanCommandTest, UnsolvedWithinTheTimeLimitExitsOne) {
+  const CommandRun run = kautham("plan problems/pusher_cans_5.xml --seed 1 --time 0.01");
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("solved    no"), std::string::npos) << run.output;
+}
+
+TEST_F(PlanCommandTest, PlannersListsEveryPlannerWithItsParameters) {
+  const CommandRun run = kautham("planners");
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* text : {"KPIECE", "RRT", "goal_bias", "border_fraction", "cell_size",
+                           "time_limit", "propagation_step_size", "Goal Bias"})
+    EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
+}
+
+TEST_F(PlanCommandTest, HelpExplainsThePlanCommand) {
+  const CommandRun run = kautham("plan --help");
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* text : {"--planner", "--time", "--seed", "--set", "--output"})
+    EXPECT_NE(run.output.find(text), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace kautham::apps
