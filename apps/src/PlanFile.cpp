@@ -3,6 +3,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <ompl/config.h>
 
 #include "kautham/core/Version.h"
@@ -72,7 +73,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"format", "kautham-plan"},
       {"format_version", kPlanFormatVersion},
       {"versions",
-       {{"kautham", core::version()}, {"ompl", OMPL_VERSION}, {"ode", physics::OdeLibrary::version()}}},
+       {{"kautham", core::version()}, {"ompl", fmt::format("{}.{}.{}", OMPL_MAJOR_VERSION, OMPL_MINOR_VERSION, OMPL_PATCH_VERSION)}, {"ode", physics::OdeLibrary::version()}}},
       {"problem",
        {{"name", context.problem().name},
         {"file", context.problem().file.string()},
@@ -104,6 +105,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
 }
 
 void writeJsonFile(const std::filesystem::path& file, const nlohmann::json& json) {
+  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
   const std::filesystem::path temporary = file.string() + ".tmp";
   {
     std::ofstream out(temporary);

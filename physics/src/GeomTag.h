@@ -2,6 +2,8 @@
 
 // Private to the physics library: what each ODE geometry belongs to, for contact handling.
 
+#include <string>
+
 #include "kautham/physics/World.h"
 
 namespace kautham::physics {
@@ -16,6 +18,7 @@ enum CollisionCategory : unsigned long {
 
 struct GeomTag {
   enum class Kind { RobotLink, RobotBase, Fixed, Movable, Target } kind;
+  std::string name;  ///< the object's name, or robot/link
 
   bool isRobot() const { return kind == Kind::RobotLink || kind == Kind::RobotBase; }
   unsigned long category() const;

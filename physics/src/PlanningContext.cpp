@@ -64,7 +64,8 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   si_->setup();
 
   // A start state that already touches what it must not is reported, not planned from.
-  world_->probeContacts();
+  constexpr double kOverlapDepth = 0.002;  // resting contacts sink about 0.5 mm
+  startOverlaps_ = world_->probeContacts(kOverlapDepth);
   start_[layout_->flagsIndex()] = world_->takeEvents();
   startViolation_ = validity_->check(start_.data());
   start_[layout_->flagsIndex()] = 0.0;

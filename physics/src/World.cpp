@@ -91,9 +91,14 @@ void World::step() {
   if (diverged()) events_ |= kSimulationDiverged;
 }
 
-void World::probeContacts() {
+std::vector<Overlap> World::probeContacts(double depth) {
+  std::vector<Overlap> overlaps;
+  overlaps_ = &overlaps;
+  overlapDepth_ = depth;
   dSpaceCollide(space_, this, &World::nearCallback);
   dJointGroupEmpty(contactGroup_);
+  overlaps_ = nullptr;
+  return overlaps;
 }
 
 unsigned World::takeEvents() {
@@ -118,6 +123,7 @@ void World::collide(dGeomID a, dGeomID b) {
                              sizeof(dContact));
   if (count == 0) return;
   events_ |= contactEvent(tagA, tagB);
+  if (overlaps_) recordOverlap(tagA, tagB, count);
   for (int i = 0; i < count; ++i) {
     dContact& contact = contactBuffer_[i];
     contact.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
@@ -126,6 +132,12 @@ void World::collide(dGeomID a, dGeomID b) {
     contact.surface.soft_cfm = settings_.cfm;
     dJointAttach(dJointCreateContact(world_, contactGroup_, &contact), bodyA, bodyB);
   }
+}
+
+void World::recordOverlap(const GeomTag& a, const GeomTag& b, int contacts) {
+  double deepest = 0.0;
+  for (int i = 0; i < contacts; ++i) deepest = std::max(deepest, contactBuffer_[i].geom.depth);
+  if (deepest > overlapDepth_) overlaps_->push_back({a.name, b.name, deepest});
 }
 
 bool World::diverged() const {

@@ -131,8 +131,9 @@ class World::Builder {
   }
 
   void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top,
-                GeomTag::Kind kind, dBodyID body, const Eigen::Isometry3d& topInWorldOrBody) {
-    world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind}));
+                GeomTag::Kind kind, dBodyID body, const Eigen::Isometry3d& topInWorldOrBody,
+                const std::string& name) {
+    world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind, name}));
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
       for (const core::CollisionShape& collision : model.links[link].collisions) {
@@ -177,7 +178,7 @@ class World::Builder {
     centreInTop.translation() = groupMass.centre;
     info.linkInBody = centreInTop.inverse();
     setBodyPose(body, topPose * centreInTop);
-    addGeoms(model, groups, top, kind, body, info.linkInBody);
+    addGeoms(model, groups, top, kind, body, info.linkInBody, info.name);
 
     world_.bodies_.push_back(body);
     world_.layout_.bodies.push_back(std::move(info));
@@ -202,7 +203,8 @@ class World::Builder {
     const std::vector<Eigen::Isometry3d> zeroPoses =
         model.linkPoses(base, std::vector<double>(movable.size(), 0.0));
 
-    addGeoms(model, groups, model.rootLink, GeomTag::Kind::RobotBase, nullptr, base);
+    addGeoms(model, groups, model.rootLink, GeomTag::Kind::RobotBase, nullptr, base,
+             robot.name + "/" + model.links[model.rootLink].name);
     std::vector<dBodyID> bodyOfGroup(model.links.size(), nullptr);
     std::vector<int> bodyIndexOfGroup(model.links.size(), -1);
     for (int j : movable) {
@@ -284,7 +286,7 @@ class World::Builder {
     const int root = object.model.rootLink;
     const Eigen::Isometry3d home = object.home.isometry();
     if (object.role == core::ObjectRole::Fixed) {
-      addGeoms(object.model, groups, root, GeomTag::Kind::Fixed, nullptr, home);
+      addGeoms(object.model, groups, root, GeomTag::Kind::Fixed, nullptr, home, object.name);
       return;
     }
     const bool target = object.role == core::ObjectRole::Target;

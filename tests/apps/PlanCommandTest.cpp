@@ -88,6 +88,20 @@ TEST_F(PlanCommandTest, MalformedProblemExitsTwoNamingFileAndLine) {
   EXPECT_NE(run.output.find("unknown role"), std::string::npos) << run.output;
 }
 
+TEST_F(PlanCommandTest, InterpenetratingObjectsExitTwoNamingThem) {
+  const CommandRun run = kautham("plan tests/data/overlap_can_in_glass.xml --model-dir models");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.output.find("overlap_can_in_glass.xml:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("can1"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("interpenetrate"), std::string::npos) << run.output;
+}
+
+TEST_F(PlanCommandTest, OutputFolderIsCreated) {
+  const fs::path planFile = folder / "new" / "folder" / "plan.json";
+  ASSERT_EQ(kautham("plan problems/pusher_free.xml --seed 1 -o " + planFile.string()).exitCode, 0);
+  EXPECT_TRUE(fs::is_regular_file(planFile));
+}
+
 TEST_F(PlanCommandTest, MissingProblemFileExitsTwo) {
   const CommandRun run = kautham("plan no/such/problem.xml");
   EXPECT_EQ(run.exitCode, 2);

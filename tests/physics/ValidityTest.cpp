@@ -20,6 +20,16 @@ TEST(ValidityTest, StartStatesOfTheShippedProblemsAreValid) {
   }
 }
 
+TEST(ValidityTest, ObjectsInterpenetratingAtTheStartAreReported) {
+  EXPECT_TRUE(ContextFixture("tests/data/pusher_wall.xml").context.startOverlaps().empty());
+  ContextFixture scene("tests/data/overlap_can_in_glass.xml");
+  const auto& overlaps = scene.context.startOverlaps();
+  ASSERT_EQ(overlaps.size(), 1u);
+  EXPECT_TRUE((overlaps[0].first == "can1" && overlaps[0].second == "glass") ||
+              (overlaps[0].first == "glass" && overlaps[0].second == "can1"));
+  EXPECT_GT(overlaps[0].depth, 0.002);
+}
+
 TEST(ValidityTest, RobotTouchingAFixedWallIsInvalid) {
   ContextFixture scene("tests/data/pusher_wall.xml");
   // The wall stands 15 cm ahead of the palm: driving forward must hit it, and nothing else.

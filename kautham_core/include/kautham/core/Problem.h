@@ -77,7 +77,8 @@ struct GoalRegion {
 
 struct Query {
   std::string name;
-  /// Normalized initial joint values in [0,1] (Kautham controls); empty: the robot's home values.
+  /// Normalized initial joint values in [0,1] (Kautham controls); empty: every joint at 0,
+  /// clamped into its limits.
   std::vector<double> init;
   GoalRegion goal;
   SourceLocation where;

@@ -47,6 +47,8 @@ class PlanningContext {
   const std::vector<double>& startState() const { return start_; }
   /// Why the start state is invalid, or Violation::None (the planners need a valid start).
   Violation startViolation() const { return startViolation_; }
+  /// Pairs of things that interpenetrate at the start (more than 2 mm): a scene error.
+  const std::vector<Overlap>& startOverlaps() const { return startOverlaps_; }
 
  private:
   core::Problem problem_;
@@ -62,6 +64,7 @@ class PlanningContext {
   std::shared_ptr<EndEffectorProjection> projection_;
   std::vector<double> start_;
   Violation startViolation_ = Violation::None;
+  std::vector<Overlap> startOverlaps_;
 };
 
 }  // namespace kautham::physics

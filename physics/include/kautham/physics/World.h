@@ -14,6 +14,13 @@ namespace kautham::physics {
 
 struct GeomTag;  // what an ODE geometry belongs to (private to the physics library)
 
+/// Two things that interpenetrate deeper than a resting contact does.
+struct Overlap {
+  std::string first;
+  std::string second;
+  double depth = 0.0;  ///< metres
+};
+
 /// A robot joint driven by a velocity motor: one control of the planner.
 struct Actuator {
   std::string name;
@@ -51,8 +58,9 @@ class World {
   void resetSolverSeed() const;
   /// Detects contacts, advances the simulation by one step, and records contact events.
   void step();
-  /// Detects contacts without stepping (to check a start state); records contact events.
-  void probeContacts();
+  /// Detects contacts without stepping (to check a start state): records contact events and
+  /// returns every pair that interpenetrates deeper than `depth` metres.
+  std::vector<Overlap> probeContacts(double depth);
   /// Events (ContactEvent flags) recorded since the last call, which clears them.
   unsigned takeEvents();
 
@@ -68,6 +76,7 @@ class World {
   bool diverged() const;
   void destroy();
   void restoreGeomOrder();
+  void recordOverlap(const GeomTag& a, const GeomTag& b, int contacts);
 
   std::shared_ptr<OdeLibrary> ode_;
   core::PhysicsSettings settings_;
@@ -81,6 +90,8 @@ class World {
   std::vector<std::unique_ptr<GeomTag>> tags_;
   std::vector<dContact> contactBuffer_;
   unsigned events_ = kNoEvent;
+  std::vector<Overlap>* overlaps_ = nullptr;  ///< set while probeContacts runs
+  double overlapDepth_ = 0.0;
 };
 
 }  // namespace kautham::physics
