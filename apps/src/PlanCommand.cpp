@@ -48,8 +48,8 @@ planners::SolveHooks terminalHooks() {
   hooks.stop = [] { return interrupted.load(); };
   if (isatty(STDERR_FILENO))
     hooks.progress = [](const planners::Progress& p) {
-      fmt::print(stderr, "\r  planning {:6.1f} s  {:>9} propagations  {:>10} physics steps", p.elapsed,
-                 p.propagations, p.physicsSteps);
+      fmt::print(stderr, "\r  planning {:6.1f} s  {:>9} propagations  {:>10} physics steps",
+                 p.elapsed, p.propagations, p.physicsSteps);
       std::fflush(stderr);
     };
   return hooks;
@@ -111,8 +111,8 @@ int runPlan(const PlanOptions& options) {
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
   if (options.query >= problem.queries.size())
-    throw std::invalid_argument(fmt::format("--query {}: the problem has {} queries",
-                                            options.query, problem.queries.size()));
+    throw std::invalid_argument(fmt::format("--query {}: the problem has {} queries", options.query,
+                                            problem.queries.size()));
   const planners::PlanRequest request = planners::makeRequest(
       problem, options.planner, parseOverrides(options), planners::seedRandomness(options.seed));
 
@@ -152,7 +152,8 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   command->add_option("-o,--output", options->output, "write the plan to this JSON file");
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
-  command->add_option("--query", options->query, "index of the query to plan")->capture_default_str();
+  command->add_option("--query", options->query, "index of the query to plan")
+      ->capture_default_str();
   command->callback([options, &exitCode] {
     try {
       exitCode = runPlan(*options);

@@ -10,7 +10,9 @@ Eigen::Vector3d localHalfExtents(const Shape& shape) {
     Eigen::Vector3d operator()(const Cylinder& c) const {
       return {c.radius, c.radius, c.length / 2.0};
     }
-    Eigen::Vector3d operator()(const Sphere& s) const { return Eigen::Vector3d::Constant(s.radius); }
+    Eigen::Vector3d operator()(const Sphere& s) const {
+      return Eigen::Vector3d::Constant(s.radius);
+    }
   };
   return std::visit(HalfExtents{}, shape);
 }

@@ -85,8 +85,9 @@ class ProblemReader {
     else if (tag == "Planner")
       setPlannerElement(e);
     else if (tag == "Controls")
-      xml_.fail(e, "<Controls> (Kautham control sets) is not supported yet: remove it to get one "
-                   "control per movable joint");
+      xml_.fail(e,
+                "<Controls> (Kautham control sets) is not supported yet: remove it to get one "
+                "control per movable joint");
     else
       xml_.fail(e, "unexpected element <" + tag +
                        ">; expected Robot, Obstacle, Physics, Interaction, Workspace or Planner");
@@ -96,8 +97,7 @@ class ProblemReader {
     if (fs::path(relative).is_absolute()) return relative;
     for (const fs::path& dir : modelDirs_) {
       std::error_code ignored;
-      if (fs::is_regular_file(dir / relative, ignored))
-        return fs::weakly_canonical(dir / relative);
+      if (fs::is_regular_file(dir / relative, ignored)) return fs::weakly_canonical(dir / relative);
     }
     std::string searched;
     for (const fs::path& dir : modelDirs_) searched += "\n  " + (dir / relative).string();
@@ -128,8 +128,9 @@ class ProblemReader {
     for (const XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
       if (tag == "Limits")
-        xml_.fail(*c, "<Limits> (mobile-base translation) is not supported yet: give the base "
-                      "prismatic joints in the URDF instead");
+        xml_.fail(*c,
+                  "<Limits> (mobile-base translation) is not supported yet: give the base "
+                  "prismatic joints in the URDF instead");
       if (tag != "Home" && tag != "KauthamName" && tag != "Uncertainty")
         xml_.fail(*c, "unexpected <" + tag + "> inside <" + e.Name() +
                           ">; expected Home, KauthamName or Uncertainty");
@@ -143,8 +144,8 @@ class ProblemReader {
     readModel(e, "robot", problem_.robot);
     const KinematicModel& model = problem_.robot.model;
     for (int j : model.movableJoints())
-      problem_.robot.initialJoints.push_back(std::clamp(0.0, model.joints[j].lower,
-                                                        model.joints[j].upper));
+      problem_.robot.initialJoints.push_back(
+          std::clamp(0.0, model.joints[j].lower, model.joints[j].upper));
   }
 
   ObjectRole readRole(const XMLElement& e) const {
@@ -180,8 +181,8 @@ class ProblemReader {
   }
 
   void readPhysics(const XMLElement& e) {
-    xml_.allowAttributes(e, {"stepSize", "gravity", "maxContacts", "solverIterations", "friction",
-                             "erp", "cfm"});
+    xml_.allowAttributes(
+        e, {"stepSize", "gravity", "maxContacts", "solverIterations", "friction", "erp", "cfm"});
     PhysicsSettings& p = problem_.physics;
     p.where = xml_.at(e);
     p.stepSize = positive(e, "stepSize", p.stepSize);
@@ -199,8 +200,8 @@ class ProblemReader {
   }
 
   void readInteraction(const XMLElement& e) {
-    xml_.allowAttributes(e, {"maxObjectSpeed", "maxDisplacement", "maxTilt", "targetTolerance",
-                             "support"});
+    xml_.allowAttributes(
+        e, {"maxObjectSpeed", "maxDisplacement", "maxTilt", "targetTolerance", "support"});
     InteractionConstraints& c = problem_.interaction;
     c.where = xml_.at(e);
     c.maxObjectSpeed = positive(e, "maxObjectSpeed", c.maxObjectSpeed);
@@ -261,8 +262,8 @@ class ProblemReader {
     xml_.allowChildren(q, {"Init", "Goal", "GoalRegion"});
     Query query;
     query.where = xml_.at(q);
-    query.name = xml_.optionalText(q, "name").value_or("query" +
-                                                       std::to_string(problem_.queries.size()));
+    query.name =
+        xml_.optionalText(q, "name").value_or("query" + std::to_string(problem_.queries.size()));
     if (const XMLElement* init = q.FirstChildElement("Init")) query.init = readInit(*init);
     if (q.FirstChildElement("Goal"))
       xml_.fail(*q.FirstChildElement("Goal"),
@@ -338,8 +339,8 @@ class ProblemReader {
                                            object.name +
                                            "' has no mass: give its URDF links an <inertial>");
       if (!object.model.movableJoints().empty())
-        throw InputError(object.where, "object '" + object.name +
-                                           "' has movable joints; objects must be rigid");
+        throw InputError(object.where,
+                         "object '" + object.name + "' has movable joints; objects must be rigid");
     }
   }
 
@@ -348,14 +349,14 @@ class ProblemReader {
     if (c.supportObject.empty()) return;
     auto index = problem_.findObject(c.supportObject);
     if (!index || problem_.objects[*index].role != ObjectRole::Fixed)
-      throw InputError(c.where, "support '" + c.supportObject +
-                                    "' must name a fixed <Obstacle> (the table)");
+      throw InputError(
+          c.where, "support '" + c.supportObject + "' must name a fixed <Obstacle> (the table)");
   }
 
   void checkGoal(const GoalRegion& goal) const {
     if (!problem_.robot.model.findLink(goal.link))
-      throw InputError(goal.where, "the robot '" + problem_.robot.name + "' has no link '" +
-                                       goal.link + "'");
+      throw InputError(goal.where,
+                       "the robot '" + problem_.robot.name + "' has no link '" + goal.link + "'");
     if (!goal.relativeTo.empty() && !problem_.findObject(goal.relativeTo))
       throw InputError(goal.where, "relativeTo names no object: '" + goal.relativeTo + "'");
     const Eigen::Vector3d position = problem_.goalPosition(goal);

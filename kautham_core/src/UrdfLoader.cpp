@@ -18,8 +18,8 @@ Eigen::Isometry3d toIsometry(const urdf::Pose& pose, double scale) {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
   const urdf::Rotation& r = pose.rotation;
   transform.linear() = Eigen::Quaterniond(r.w, r.x, r.y, r.z).normalized().toRotationMatrix();
-  transform.translation() = scale * Eigen::Vector3d(pose.position.x, pose.position.y,
-                                                    pose.position.z);
+  transform.translation() =
+      scale * Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
   return transform;
 }
 
@@ -156,8 +156,7 @@ class UrdfConverter {
     joint.lower = source.limits->lower * lengthScale;
     joint.upper = source.limits->upper * lengthScale;
     if (!(joint.lower < joint.upper))
-      fail("joint", source.name,
-           "joint '" + source.name + "': <limit> needs lower < upper");
+      fail("joint", source.name, "joint '" + source.name + "': <limit> needs lower < upper");
   }
 
   const XmlReader& xml_;

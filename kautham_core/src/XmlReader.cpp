@@ -85,13 +85,12 @@ double XmlReader::number(const tinyxml2::XMLElement& element, const char* attrib
   if (!text) return fallback;
   auto values = parseNumbers(element, *text, std::string("attribute ") + attribute);
   if (values.size() != 1)
-    fail(element, std::string("attribute ") + attribute + " must be one number, got '" + *text +
-                      "'");
+    fail(element,
+         std::string("attribute ") + attribute + " must be one number, got '" + *text + "'");
   return values.front();
 }
 
-double XmlReader::requiredNumber(const tinyxml2::XMLElement& element,
-                                 const char* attribute) const {
+double XmlReader::requiredNumber(const tinyxml2::XMLElement& element, const char* attribute) const {
   requiredText(element, attribute);
   return number(element, attribute, 0.0);
 }
@@ -110,8 +109,8 @@ Eigen::Vector3d XmlReader::vector3(const tinyxml2::XMLElement& element, const ch
   if (!text) return fallback;
   auto values = parseNumbers(element, *text, std::string("attribute ") + attribute);
   if (values.size() != 3)
-    fail(element, std::string("attribute ") + attribute + " must be three numbers \"x y z\", got '" +
-                      *text + "'");
+    fail(element, std::string("attribute ") + attribute +
+                      " must be three numbers \"x y z\", got '" + *text + "'");
   return {values[0], values[1], values[2]};
 }
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <tinyxml2.h>
+#include <Eigen/Core>
 
 #include "kautham/core/InputError.h"
 

@@ -27,10 +27,9 @@ void checkSettings(const PropagationSettings& settings, double physicsStep) {
   const double ratio = settings.propagationStepSize / physicsStep;
   if (!(settings.propagationStepSize > 0.0) || std::abs(ratio - std::round(ratio)) > 1e-6 ||
       std::round(ratio) < 1.0)
-    throw std::invalid_argument("the propagation step size (" +
-                                std::to_string(settings.propagationStepSize) +
-                                " s) must be a whole multiple of the physics step (" +
-                                std::to_string(physicsStep) + " s)");
+    throw std::invalid_argument(
+        "the propagation step size (" + std::to_string(settings.propagationStepSize) +
+        " s) must be a whole multiple of the physics step (" + std::to_string(physicsStep) + " s)");
   if (settings.minControlSteps < 1 || settings.minControlSteps > settings.maxControlSteps)
     throw std::invalid_argument("control steps need 1 <= min_control_steps <= max_control_steps");
 }
@@ -48,13 +47,13 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
 
   const Eigen::Vector3d margin = Eigen::Vector3d::Constant(1.0);
   space_ = std::make_shared<WorldStateSpace>(
-      layout_, Eigen::AlignedBox3d(problem_.workspace.min() - margin,
-                                   problem_.workspace.max() + margin));
+      layout_,
+      Eigen::AlignedBox3d(problem_.workspace.min() - margin, problem_.workspace.max() + margin));
   projection_ = std::make_shared<EndEffectorProjection>(space_.get(), layout_, problem_.workspace);
   space_->registerDefaultProjection(projection_);
 
-  si_ = std::make_shared<ompl::control::SpaceInformation>(space_,
-                                                          makeControlSpace(space_, *world_));
+  si_ =
+      std::make_shared<ompl::control::SpaceInformation>(space_, makeControlSpace(space_, *world_));
   propagator_ = std::make_shared<PhysicsPropagator>(si_, world_);
   validity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data());
   si_->setStatePropagator(propagator_);

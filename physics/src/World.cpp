@@ -119,8 +119,8 @@ void World::collide(dGeomID a, dGeomID b) {
   const GeomTag& tagB = *static_cast<const GeomTag*>(dGeomGetData(b));
   if (tagA.isRobot() && tagB.isRobot()) return;  // no self-collision (docs/problem-format.md)
 
-  const int count = dCollide(a, b, settings_.maxContacts, &contactBuffer_[0].geom,
-                             sizeof(dContact));
+  const int count =
+      dCollide(a, b, settings_.maxContacts, &contactBuffer_[0].geom, sizeof(dContact));
   if (count == 0) return;
   events_ |= contactEvent(tagA, tagB);
   if (overlaps_) recordOverlap(tagA, tagB, count);

@@ -36,8 +36,8 @@ dGeomID createGeom(const core::Shape& shape) {
 /// Links rigidly attached to each other (through fixed joints) move as one ODE body.
 /// A group is named by its top link: the root, or a link whose parent joint moves.
 struct LinkGroups {
-  std::vector<int> groupOf;                 ///< link -> its group's top link
-  std::vector<Eigen::Isometry3d> inGroup;   ///< link pose in its group's top link frame
+  std::vector<int> groupOf;                ///< link -> its group's top link
+  std::vector<Eigen::Isometry3d> inGroup;  ///< link pose in its group's top link frame
 
   explicit LinkGroups(const KinematicModel& model)
       : groupOf(model.links.size(), -1), inGroup(model.links.size()) {
@@ -106,8 +106,7 @@ struct GroupMass {
 
 class World::Builder {
  public:
-  explicit Builder(World& world, const core::Problem& problem)
-      : world_(world), problem_(problem) {}
+  explicit Builder(World& world, const core::Problem& problem) : world_(world), problem_(problem) {}
 
   void build(const core::Query& query) {
     createWorld();
@@ -130,9 +129,8 @@ class World::Builder {
     world_.contactGroup_ = dJointGroupCreate(0);
   }
 
-  void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top,
-                GeomTag::Kind kind, dBodyID body, const Eigen::Isometry3d& topInWorldOrBody,
-                const std::string& name) {
+  void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top, GeomTag::Kind kind,
+                dBodyID body, const Eigen::Isometry3d& topInWorldOrBody, const std::string& name) {
     world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind, name}));
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
@@ -169,8 +167,8 @@ class World::Builder {
     dMass mass;
     dMassSetZero(&mass);
     const Eigen::Matrix3d& I = groupMass.inertia;
-    dMassSetParameters(&mass, groupMass.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1),
-                       I(0, 2), I(1, 2));
+    dMassSetParameters(&mass, groupMass.mass, 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2),
+                       I(1, 2));
     dBodySetMass(body, &mass);
 
     // ODE bodies sit at their centre of mass; the link frame is offset from it.
@@ -186,8 +184,7 @@ class World::Builder {
   }
 
   static void setBodyPose(dBodyID body, const Eigen::Isometry3d& pose) {
-    dBodySetPosition(body, pose.translation().x(), pose.translation().y(),
-                     pose.translation().z());
+    dBodySetPosition(body, pose.translation().x(), pose.translation().y(), pose.translation().z());
     const Eigen::Quaterniond q(pose.linear());
     dQuaternion quaternion = {q.w(), q.x(), q.y(), q.z()};
     dBodySetQuaternion(body, quaternion);
@@ -211,8 +208,8 @@ class World::Builder {
       const int child = model.joints[j].childLink;
       bodyIndexOfGroup[child] = static_cast<int>(world_.bodies_.size());
       BodyInfo info{robot.name + "/" + model.links[child].name, BodyRole::Robot, -1, {}};
-      dBodyID body = createBody(model, groups, child, zeroPoses[child], info,
-                                GeomTag::Kind::RobotLink);
+      dBodyID body =
+          createBody(model, groups, child, zeroPoses[child], info, GeomTag::Kind::RobotLink);
       dBodySetGravityMode(body, 0);  // the arm holds itself: its motors need not fight gravity
       bodyOfGroup[child] = body;
     }

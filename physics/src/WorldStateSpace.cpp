@@ -34,9 +34,7 @@ const double* WorldStateSpace::values(const ompl::base::State* state) {
   return state->as<StateType>()->values;
 }
 
-double* WorldStateSpace::values(ompl::base::State* state) {
-  return state->as<StateType>()->values;
-}
+double* WorldStateSpace::values(ompl::base::State* state) { return state->as<StateType>()->values; }
 
 double WorldStateSpace::distance(const ompl::base::State* a, const ompl::base::State* b) const {
   return (layout_->goalLinkPosition(values(a)) - layout_->goalLinkPosition(values(b))).norm();

@@ -13,40 +13,59 @@ using core::ParameterSpec;
 using core::ParameterType;
 
 ParameterSpec goalBias(double fallback) {
-  return {"goal_bias", ParameterType::Real, fallback, 0.0, 1.0,
+  return {"goal_bias",
+          ParameterType::Real,
+          fallback,
+          0.0,
+          1.0,
           "probability of expanding towards the goal instead of exploring",
           {"Goal Bias", "goalBias"}};
 }
 
 PlannerRegistry::Entry kpiece() {
-  return {
-      "KPIECE",
-      "OMPL's KPIECE1 over ODE: grid of end-effector cells, expands from the exterior cells",
-      {goalBias(0.05),
-       {"border_fraction", ParameterType::Real, 0.8, 0.0, 1.0,
-        "fraction of expansions from exterior (border) cells",
-        {"Border Fraction"}},
-       {"max_close_samples", ParameterType::Integer, 30, 1, 10000,
-        "how many motions closest to the goal are kept for goal-biased expansion",
-        {}},
-       {"cell_size", ParameterType::Real, 0.05, 0.001, 1.0,
-        "projection cell side, as a fraction of the workspace side",
-        {"Cell Size"}}},
-      [](const core::ParameterSet& p, physics::PlanningContext& context) {
-        context.projection().setCellFraction(p.real("cell_size"));
-        auto planner = std::make_shared<ompl::control::KPIECE1>(context.spaceInformation());
-        planner->setGoalBias(p.real("goal_bias"));
-        planner->setBorderFraction(p.real("border_fraction"));
-        planner->setMaxCloseSamplesCount(static_cast<unsigned>(p.integer("max_close_samples")));
-        return ompl::base::PlannerPtr(planner);
-      }};
+  return {"KPIECE",
+          "OMPL's KPIECE1 over ODE: grid of end-effector cells, expands from the exterior cells",
+          {goalBias(0.05),
+           {"border_fraction",
+            ParameterType::Real,
+            0.8,
+            0.0,
+            1.0,
+            "fraction of expansions from exterior (border) cells",
+            {"Border Fraction"}},
+           {"max_close_samples",
+            ParameterType::Integer,
+            30,
+            1,
+            10000,
+            "how many motions closest to the goal are kept for goal-biased expansion",
+            {}},
+           {"cell_size",
+            ParameterType::Real,
+            0.05,
+            0.001,
+            1.0,
+            "projection cell side, as a fraction of the workspace side",
+            {"Cell Size"}}},
+          [](const core::ParameterSet& p, physics::PlanningContext& context) {
+            context.projection().setCellFraction(p.real("cell_size"));
+            auto planner = std::make_shared<ompl::control::KPIECE1>(context.spaceInformation());
+            planner->setGoalBias(p.real("goal_bias"));
+            planner->setBorderFraction(p.real("border_fraction"));
+            planner->setMaxCloseSamplesCount(static_cast<unsigned>(p.integer("max_close_samples")));
+            return ompl::base::PlannerPtr(planner);
+          }};
 }
 
 PlannerRegistry::Entry rrt() {
   return {"RRT",
           "OMPL's control RRT over ODE: grows towards random end-effector positions",
           {goalBias(0.05),
-           {"intermediate_states", ParameterType::Boolean, 0, 0, 1,
+           {"intermediate_states",
+            ParameterType::Boolean,
+            0,
+            0,
+            1,
             "add the states inside each motion to the tree",
             {}}},
           [](const core::ParameterSet& p, physics::PlanningContext& context) {

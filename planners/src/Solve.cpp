@@ -23,7 +23,7 @@ double secondsSince(Clock::time_point start) {
 }
 
 std::vector<physics::ControlStep> controlsOf(const ompl::control::PathControl& path,
-                                            std::size_t controlCount, double stepSize) {
+                                             std::size_t controlCount, double stepSize) {
   std::vector<physics::ControlStep> steps;
   for (std::size_t i = 0; i < path.getControlCount(); ++i) {
     const auto* values =
@@ -37,7 +37,7 @@ std::vector<physics::ControlStep> controlsOf(const ompl::control::PathControl& p
 
 /// Stops the planner when asked to, and reports progress on the way.
 ompl::base::PlannerTerminationCondition watcher(const physics::PlanningContext& context,
-                                               const SolveHooks& hooks, Clock::time_point start) {
+                                                const SolveHooks& hooks, Clock::time_point start) {
   auto lastReport = std::make_shared<double>(0.0);
   return ompl::base::PlannerTerminationCondition([&context, hooks, start, lastReport] {
     if (hooks.progress) {

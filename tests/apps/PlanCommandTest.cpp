@@ -22,8 +22,8 @@ struct CommandRun {
 };
 
 CommandRun kautham(const std::string& arguments) {
-  const std::string command =
-      "cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY + "' " + arguments + " 2>&1";
+  const std::string command = "cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY +
+                              "' " + arguments + " 2>&1";
   CommandRun run;
   FILE* pipe = popen(command.c_str(), "r");
   char buffer[4096];
@@ -40,16 +40,18 @@ nlohmann::json readJson(const fs::path& file) {
 
 class PlanCommandTest : public ::testing::Test {
  protected:
-  fs::path folder = fs::temp_directory_path() /
-                    ("kautham_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                     "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  fs::path folder =
+      fs::temp_directory_path() /
+      ("kautham_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+       ::testing::UnitTest::GetInstance()->current_test_info()->name());
   void SetUp() override { fs::create_directories(folder); }
   void TearDown() override { fs::remove_all(folder); }
 };
 
 TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
   const fs::path planFile = folder / "plan.json";
-  const CommandRun run = kautham("plan problems/pusher_cans_5.xml --seed 1 -o " + planFile.string());
+  const CommandRun run =
+      kautham("plan problems/pusher_cans_5.xml --seed 1 -o " + planFile.string());
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("solved    yes"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("reaches the goal"), std::string::npos) << run.output;

@@ -369,11 +369,17 @@ SceneResult measure(const Problem& base, int cans, const Options& options) {
   // Repetitions interleave the three kinds of run, so a slow phase of the machine hits all.
   for (int rep = 0; rep < options.repetitions; ++rep) {
     SweepOutcome raw, chained, single;
-    for (unsigned i = 0; i < result.sweepsPerRepetition; ++i)
+    for (unsigned i = 0; i < result.sweepsPerRepetition; ++i) {
       raw += rawSweep(coarseContext, segments, false);
-    for (unsigned i = 0; i < result.sweepsPerRepetition; ++i)
       chained += coarse.run(segments, false);
-    for (unsigned i = 0; i < result.sweepsPerRepetition; ++i) single += fine.run(segments, false);
+      single += fine.run(segments, false);
+    }
+    if (getenv("PT_DEBUG"))
+      std::fprintf(stderr, "rep %d: raw %.0f chained %.0f single %.0f  ratio %.3f %.3f\n", rep,
+                   raw.steps / raw.seconds, chained.steps / chained.seconds,
+                   single.steps / single.seconds,
+                   (chained.seconds / chained.steps) / (raw.seconds / raw.steps),
+                   (single.seconds / single.steps) / (raw.seconds / raw.steps));
     result.raw.keepBest(raw);
     result.coarse.keepBest(chained);
     result.fine.keepBest(single);

@@ -12,8 +12,8 @@ namespace {
 using test::ContextFixture;
 
 TEST(ValidityTest, StartStatesOfTheShippedProblemsAreValid) {
-  for (const char* file : {"problems/pusher_cans_5.xml", "problems/pusher_free.xml",
-                           "tests/data/pusher_wall.xml"}) {
+  for (const char* file :
+       {"problems/pusher_cans_5.xml", "problems/pusher_free.xml", "tests/data/pusher_wall.xml"}) {
     ContextFixture scene(file);
     EXPECT_EQ(scene.context.startViolation(), Violation::None) << file;
     EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None) << file;
@@ -96,14 +96,12 @@ TEST(ValidityTest, ObjectOffTheTableIsInvalid) {
   can[0] = 0.59;  // the table top spans x in [-0.6, 0.6]
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
   can[0] = 0.61;
-  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
-            Violation::ObjectOffSupport);
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::ObjectOffSupport);
   can[0] = 0.0;
   can[2] -= 0.01;  // settling into the table a little is fine
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
   can[2] -= 0.02;  // fell through: well below its resting height
-  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
-            Violation::ObjectOffSupport);
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::ObjectOffSupport);
 }
 
 TEST(ValidityTest, EndEffectorOutsideTheWorkspaceIsInvalid) {
@@ -114,8 +112,7 @@ TEST(ValidityTest, EndEffectorOutsideTheWorkspaceIsInvalid) {
   gripper[0] = 0.44;
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
   gripper[0] = 0.46;
-  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()),
-            Violation::OutsideWorkspace);
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::OutsideWorkspace);
 }
 
 TEST(ValidityTest, SimulationBlowUpIsDetectedAndRejected) {

@@ -46,9 +46,9 @@ TEST_F(WorldTest, UntouchedCanStaysWithinOneMillimetreForTwoSeconds) {
 
 TEST_F(WorldTest, JointsStartAtTheQueryInitAndFollowTheirMotors) {
   std::vector<double> q = world.jointPositions();
-  EXPECT_NEAR(q[0], 0.0, 1e-9);   // x: normalized 0.5 of [-0.5, 0.5]
-  EXPECT_NEAR(q[1], 0.0, 1e-9);   // y: normalized 0 of [0, 0.7]
-  EXPECT_NEAR(q[2], 0.0, 1e-9);   // yaw: normalized 0.5 of [-1.57, 1.57]
+  EXPECT_NEAR(q[0], 0.0, 1e-9);  // x: normalized 0.5 of [-0.5, 0.5]
+  EXPECT_NEAR(q[1], 0.0, 1e-9);  // y: normalized 0 of [0, 0.7]
+  EXPECT_NEAR(q[2], 0.0, 1e-9);  // yaw: normalized 0.5 of [-1.57, 1.57]
   run(0.4, {0.1, 0.0, 0.5});
   q = world.jointPositions();
   EXPECT_NEAR(q[0], 0.04, 5e-3);

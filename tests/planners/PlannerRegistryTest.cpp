@@ -25,7 +25,8 @@ TEST(PlannerRegistryTest, CreatesPlannersOverTheProblemsPhysics) {
   const core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_free.xml"));
   physics::PlanningContext context(problem, 0, {});
   for (const auto* entry : plannerRegistry().entries()) {
-    ompl::base::PlannerPtr planner = entry->create(plannerRegistry().defaults(entry->name), context);
+    ompl::base::PlannerPtr planner =
+        entry->create(plannerRegistry().defaults(entry->name), context);
     ASSERT_TRUE(planner) << entry->name;
     EXPECT_EQ(planner->getSpaceInformation(), context.spaceInformation());
   }
@@ -40,9 +41,9 @@ TEST_F(RequestTest, TakesPlannerAndKauthamParametersFromTheFile) {
   const PlanRequest request = makeRequest(problem, std::nullopt, {}, 7);
   EXPECT_EQ(request.planner, "KPIECE");
   EXPECT_EQ(request.seed, 7u);
-  EXPECT_DOUBLE_EQ(request.timeLimit(), 60.0);  // "_Max Planning Time"
+  EXPECT_DOUBLE_EQ(request.timeLimit(), 60.0);                   // "_Max Planning Time"
   EXPECT_DOUBLE_EQ(request.parameters.real("goal_bias"), 0.05);  // "Goal Bias"
-  EXPECT_EQ(request.propagation().maxControlSteps, 20u);  // "Max Control Steps"
+  EXPECT_EQ(request.propagation().maxControlSteps, 20u);         // "Max Control Steps"
 }
 
 TEST_F(RequestTest, CommandLineOverridesTheFile) {

@@ -15,7 +15,7 @@ enum class JointType { Fixed, Revolute, Continuous, Prismatic };
 struct Inertial {
   double mass = 0.0;
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< centre of mass frame in the link
-  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();          ///< about the centre of mass frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         ///< about the centre of mass frame
 };
 
 struct Link {
@@ -56,7 +56,8 @@ class KinematicModel {
   /// World pose of every link for the given values of the movable joints.
   std::vector<Eigen::Isometry3d> linkPoses(const Eigen::Isometry3d& base,
                                            const std::vector<double>& jointValues) const;
-  /// Transform that a joint adds at the given value (rotation about, or translation along, its axis).
+  /// Transform that a joint adds at the given value (rotation about, or translation along, its
+  /// axis).
   static Eigen::Isometry3d jointMotion(const Joint& joint, double value);
 };
 

@@ -13,14 +13,14 @@ namespace kautham::physics {
 /// Why a state is invalid (the paper's validity function F(W, C)).
 enum class Violation {
   None,
-  SimulationDiverged,   ///< NaN or runaway speeds: the physics blew up
-  RobotTouchedFixed,    ///< the robot touched a fixed obstacle
-  RobotTouchedTarget,   ///< the robot touched the target
-  TargetMoved,          ///< the target drifted more than the tolerance
-  OutsideWorkspace,     ///< the end effector left the workspace
-  ObjectTooFast,        ///< a movable object is faster than the limit
-  ObjectTilted,         ///< a movable object tipped beyond the limit
-  ObjectOffSupport,     ///< a movable object left the table (or fell)
+  SimulationDiverged,  ///< NaN or runaway speeds: the physics blew up
+  RobotTouchedFixed,   ///< the robot touched a fixed obstacle
+  RobotTouchedTarget,  ///< the robot touched the target
+  TargetMoved,         ///< the target drifted more than the tolerance
+  OutsideWorkspace,    ///< the end effector left the workspace
+  ObjectTooFast,       ///< a movable object is faster than the limit
+  ObjectTilted,        ///< a movable object tipped beyond the limit
+  ObjectOffSupport,    ///< a movable object left the table (or fell)
 };
 const char* toString(Violation violation);
 
