@@ -48,8 +48,10 @@ planners::SolveHooks terminalHooks() {
   hooks.stop = [] { return interrupted.load(); };
   if (isatty(STDERR_FILENO))
     hooks.progress = [](const planners::Progress& p) {
-      fmt::print(stderr, "\r  planning {:6.1f} s  {:>9} propagations  {:>10} physics steps",
-                 p.elapsed, p.propagations, p.physicsSteps);
+      fmt::print(stderr,
+                 "\r  planning {:6.1f} s  {:>9} propagations  {:>10} physics steps  closest "
+                 "{:5.1f} cm ",
+                 p.elapsed, p.propagations, p.physicsSteps, 100.0 * p.bestGoalDistance);
       std::fflush(stderr);
     };
   return hooks;
@@ -122,7 +124,7 @@ int runPlan(const PlanOptions& options) {
   std::signal(SIGINT, [](int) { interrupted = true; });
   const planners::PlanOutcome outcome = planners::solve(context, request, terminalHooks());
   std::signal(SIGINT, SIG_DFL);
-  if (isatty(STDERR_FILENO)) fmt::print(stderr, "\r{:80}\r", "");
+  if (isatty(STDERR_FILENO)) fmt::print(stderr, "\r{:100}\r", "");
 
   const physics::ReplayResult replay = physics::replay(context, outcome.controls);
   printSummary(context, request, outcome, replay);

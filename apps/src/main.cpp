@@ -9,6 +9,10 @@ int main(int argc, char** argv) {
   CLI::App app{"kautham: physics-based motion planning for grasping in clutter"};
   app.set_version_flag("--version", std::string("kautham ") + kautham::core::version());
   app.require_subcommand(1);
+  app.footer(
+      "Exit codes: 0 solved, 1 ran but not solved, 2 bad input.\n"
+      "Example: kautham plan problems/pusher_cans_5.xml --seed 1 -o out/plan.json\n"
+      "Problem files: docs/problem-format.md");
   app.fallthrough();
 
   // OMPL's informational messages would drown our summary; its warnings and errors stay.

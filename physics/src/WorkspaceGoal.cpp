@@ -1,5 +1,7 @@
 #include "kautham/physics/WorkspaceGoal.h"
 
+#include <algorithm>
+
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::physics {
@@ -12,7 +14,9 @@ WorkspaceGoal::WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
 }
 
 double WorkspaceGoal::distanceGoal(const ompl::base::State* state) const {
-  return distance(WorldStateSpace::values(state));
+  const double d = distance(WorldStateSpace::values(state));
+  best_ = std::min(best_, d);
+  return d;
 }
 
 double WorkspaceGoal::distance(const double* state) const {

@@ -45,7 +45,8 @@ ompl::base::PlannerTerminationCondition watcher(const physics::PlanningContext& 
       if (elapsed - *lastReport >= 0.5) {
         *lastReport = elapsed;
         const auto& counters = context.propagator().counters();
-        hooks.progress({elapsed, counters.propagations, counters.physicsSteps});
+        hooks.progress(
+            {elapsed, counters.propagations, counters.physicsSteps, context.goal().bestDistance()});
       }
     }
     return hooks.stop && hooks.stop();
@@ -70,6 +71,7 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
   const PlannerRegistry::Entry& entry = plannerRegistry().at(request.planner);
   ompl::base::PlannerPtr planner = entry.create(request.parameters, context);
   context.problemDefinition()->clearSolutionPaths();
+  context.goal().resetBestDistance();
   planner->setProblemDefinition(context.problemDefinition());
   planner->setup();
 

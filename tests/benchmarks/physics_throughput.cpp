@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -155,10 +156,16 @@ unsigned totalSteps(const std::vector<Segment>& segments) {
 double seconds(Clock::time_point from, Clock::time_point to) {
   return std::chrono::duration<double>(to - from).count();
 }
+double cpuNow() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
 
 /// What one sweep did, for the sanity checks.
 struct SweepOutcome {
   double seconds = 0.0;
+  double cpu = 0.0;
   unsigned long long steps = 0;  ///< physics steps
   unsigned long long calls = 0;  ///< propagate + check calls (0 for raw stepping)
   unsigned long long invalid = 0;
@@ -173,12 +180,14 @@ SweepOutcome rawSweep(PlanningContext& context, const std::vector<Segment>& segm
   world.resetSolverSeed();
   world.takeEvents();
   SweepOutcome outcome;
+  const double c0 = cpuNow();
   const Clock::time_point start = Clock::now();
   for (const Segment& s : segments) {
     world.setJointVelocities(s.velocities.data());
     for (unsigned i = 0; i < s.steps; ++i) world.step();
   }
   outcome.seconds = seconds(start, Clock::now());
+  outcome.cpu = cpuNow() - c0;
   outcome.steps = totalSteps(segments);
   if (keepFinalState) {
     outcome.finalState.resize(context.layout().stateSize());
@@ -219,6 +228,7 @@ class ChainedRunner {
     const unsigned long long stepsBefore = propagator.counters().physicsSteps;
 
     SweepOutcome outcome;
+    const double c0 = cpuNow();
     const Clock::time_point begin = Clock::now();
     for (const Segment& s : segments) {
       std::copy(s.velocities.begin(), s.velocities.end(), velocities);
@@ -239,6 +249,7 @@ class ChainedRunner {
       outcome.calls += calls;
     }
     outcome.seconds = seconds(begin, Clock::now());
+    outcome.cpu = cpuNow() - c0;
     outcome.steps = propagator.counters().physicsSteps - stepsBefore;
     if (keepFinalState) {
       const double* values = WorldStateSpace::values(from_);
@@ -286,6 +297,7 @@ struct Rate {
 
 SweepOutcome& operator+=(SweepOutcome& sum, const SweepOutcome& one) {
   sum.seconds += one.seconds;
+  sum.cpu += one.cpu;
   sum.steps += one.steps;
   sum.calls += one.calls;
   sum.invalid += one.invalid;
@@ -343,6 +355,13 @@ SceneResult measure(const Problem& base, int cans, const Options& options) {
   SceneResult result;
   result.objects = cans;
   result.coarseStepsPerCall = coarse.stepsPerCall();
+  if (const char* only = getenv("PT_ONLY")) {
+    std::string k = only;
+    SweepOutcome o = k == "raw" ? rawSweep(coarseContext, segments, true)
+                     : k == "chained" ? coarse.run(segments, true) : fine.run(segments, true);
+    std::fprintf(stderr, "%s: %llu steps moved %d\n", only, o.steps, movedCans(coarseContext, o.finalState));
+    return result;
+  }
   // Warm-up, sanity checks, and the number of sweeps that makes a repetition long enough.
   const SweepOutcome rawOnce = rawSweep(coarseContext, segments, true);
   const SweepOutcome coarseOnce = coarse.run(segments, true);
@@ -370,9 +389,15 @@ SceneResult measure(const Problem& base, int cans, const Options& options) {
   for (int rep = 0; rep < options.repetitions; ++rep) {
     SweepOutcome raw, chained, single;
     for (unsigned i = 0; i < result.sweepsPerRepetition; ++i) {
+      if (getenv("PT_SWAP")) {
+        single += fine.run(segments, false);
+        chained += coarse.run(segments, false);
+        raw += rawSweep(coarseContext, segments, false);
+      } else {
       raw += rawSweep(coarseContext, segments, false);
       chained += coarse.run(segments, false);
       single += fine.run(segments, false);
+      }
     }
     if (getenv("PT_DEBUG"))
       std::fprintf(stderr, "rep %d: raw %.0f chained %.0f single %.0f  ratio %.3f %.3f\n", rep,
@@ -380,6 +405,12 @@ SceneResult measure(const Problem& base, int cans, const Options& options) {
                    single.steps / single.seconds,
                    (chained.seconds / chained.steps) / (raw.seconds / raw.steps),
                    (single.seconds / single.steps) / (raw.seconds / raw.steps));
+    if (getenv("PT_DEBUG"))
+      std::fprintf(stderr, "  cpu: raw %.0f chained %.0f single %.0f  ratio %.3f %.3f\n",
+                   raw.steps / raw.cpu, chained.steps / chained.cpu,
+                   single.steps / single.cpu,
+                   (chained.cpu / chained.steps) / (raw.cpu / raw.steps),
+                   (single.cpu / single.steps) / (raw.cpu / raw.steps));
     result.raw.keepBest(raw);
     result.coarse.keepBest(chained);
     result.fine.keepBest(single);

@@ -42,6 +42,7 @@ class PlanningContext {
   const PhysicsPropagator& propagator() const { return *propagator_; }
   const WorldValidityChecker& validityChecker() const { return *validity_; }
   const WorkspaceGoal& goal() const { return *goal_; }
+  WorkspaceGoal& goal() { return *goal_; }
   EndEffectorProjection& projection() { return *projection_; }
 
   const std::vector<double>& startState() const { return start_; }

@@ -14,6 +14,7 @@ struct Progress {
   double elapsed = 0.0;  ///< seconds
   std::uint64_t propagations = 0;
   std::uint64_t physicsSteps = 0;
+  double bestGoalDistance = 0.0;  ///< metres: how close the search has come to the goal
 };
 
 struct SolveHooks {
