@@ -1,17 +1,16 @@
 // Physics throughput: how fast ODE steps our scenes, and how much of that speed the planner's
 // inner loop (PhysicsPropagator::propagate + WorldValidityChecker::check, chained from state to
-// state) keeps. Scenes are pusher_cans_5.xml with 5, 20 and 40 cans; the pusher sweeps the table
-// with a fixed control sequence so that it pushes cans. See docs/performance.md.
+// state) keeps. Scenes are problems/pusher_cans_5.xml with 5, 20 and 40 cans; the pusher sweeps
+// the table with a fixed control sequence that pushes cans. See docs/performance.md.
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,23 +51,26 @@ constexpr double kGripperMaxX = 0.07;
 constexpr double kGripperMaxY = -0.22;
 constexpr double kGripperMinY = -0.31;
 // The grid: 9 columns 11 cm apart at |x| <= 0.44 (inside the pusher's workspace, |x| <= 0.45),
-// 6 rows 10 cm apart from y = -0.16 to 0.34 (the back row 2.7 cm inside the table's edge).
-// Columns are wider apart than the 2 cm gap needs: with the gripper centred on a column, that
-// column's can sits between the fingers (inner edges at +-6 cm) and the next columns' cans
-// clear the fingers (outer edges at +-7 cm) by 7 mm, so a push moves one column straight.
+// 6 rows 10 cm apart from y = -0.16 to 0.34 (the back row 2.7 cm inside the table's edge):
+// gaps of 4.4 cm and 3.4 cm. Columns are wider apart than the 2 cm gap needs: with the gripper
+// centred on a column, that column's can sits between the fingers (inner edges at +-6 cm) and
+// the next columns' cans clear the fingers (outer edges at +-7 cm) by 7 mm, so a push moves
+// one column straight ahead instead of shoving cans sideways into the glass.
 constexpr int kColumns = 9;
 constexpr int kRows = 6;
 constexpr double kColumnPitch = 0.11;
 constexpr double kRowPitch = 0.10;
 constexpr double kFirstRowY = -0.16;
+constexpr double kOrderFromY = -0.1;
 
 struct Slot {
   double x = 0.0;
   double y = 0.0;
 };
 
-/// Can positions on a grid with 2 cm gaps, off the glass and off the pusher, nearest first to
-/// the point between the pusher and the glass (so every scene is the smaller one plus a ring).
+/// Can positions on the grid, off the glass and off the pusher by at least the gap, nearest
+/// first to (0, kOrderFromY): the small scene stands in front of the pusher, the larger ones
+/// add rings around it and around the glass (each scene is the smaller one plus more cans).
 std::vector<Slot> canSlots() {
   std::vector<Slot> slots;
   for (int r = 0; r < kRows; ++r) {
@@ -82,9 +84,7 @@ std::vector<Slot> canSlots() {
       slots.push_back(s);
     }
   }
-  const auto key = [](const Slot& s) {
-    return std::hypot(s.x, s.y - -0.1);
-  };
+  const auto key = [](const Slot& s) { return std::hypot(s.x, s.y - kOrderFromY); };
   std::stable_sort(slots.begin(), slots.end(),
                    [&](const Slot& a, const Slot& b) { return key(a) < key(b); });
   return slots;
@@ -153,55 +153,61 @@ unsigned totalSteps(const std::vector<Segment>& segments) {
 // ---------------------------------------------------------------------------------------------
 // Runs
 
-double seconds(Clock::time_point from, Clock::time_point to) {
-  return std::chrono::duration<double>(to - from).count();
-}
-double cpuNow() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return t.tv_sec + 1e-9 * t.tv_nsec;
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-/// What one sweep did, for the sanity checks.
-struct SweepOutcome {
+/// What some sweeps did.
+struct Work {
   double seconds = 0.0;
-  double cpu = 0.0;
-  unsigned long long steps = 0;  ///< physics steps
-  unsigned long long calls = 0;  ///< propagate + check calls (0 for raw stepping)
-  unsigned long long invalid = 0;
-  std::vector<double> finalState;
+  unsigned long long steps = 0;    ///< physics steps
+  unsigned long long calls = 0;    ///< propagate + check calls (none for raw stepping)
+  unsigned long long invalid = 0;  ///< states the validity checker rejected
+
+  Work& operator+=(const Work& other) {
+    seconds += other.seconds;
+    steps += other.steps;
+    calls += other.calls;
+    invalid += other.invalid;
+    return *this;
+  }
 };
 
-/// (a) World::step() in a loop from the start state, the controls set at each segment.
-SweepOutcome rawSweep(PlanningContext& context, const std::vector<Segment>& segments,
-                      bool keepFinalState) {
+/// (a) World::step() in a loop (collision, QuickStep, contact cleanup) from the start state,
+/// the controls set at the start of each segment. Only the loop is timed.
+Work rawSweep(PlanningContext& context, const std::vector<Segment>& segments,
+              std::vector<double>* finalState = nullptr) {
   World& world = context.world();
   world.writeState(context.startState().data());
   world.resetSolverSeed();
   world.takeEvents();
-  SweepOutcome outcome;
-  const double c0 = cpuNow();
+  Work work;
   const Clock::time_point start = Clock::now();
   for (const Segment& s : segments) {
     world.setJointVelocities(s.velocities.data());
     for (unsigned i = 0; i < s.steps; ++i) world.step();
   }
-  outcome.seconds = seconds(start, Clock::now());
-  outcome.cpu = cpuNow() - c0;
-  outcome.steps = totalSteps(segments);
-  if (keepFinalState) {
-    outcome.finalState.resize(context.layout().stateSize());
-    world.readState(outcome.finalState.data());
+  work.seconds = secondsSince(start);
+  work.steps = totalSteps(segments);
+  if (finalState) {
+    finalState->resize(context.layout().stateSize());
+    world.readState(finalState->data());
   }
-  return outcome;
+  return work;
 }
 
-/// (b) and (d): the planner's inner loop, propagate one propagation step then check the
-/// result, each call starting from the previous result. The chain carries on through invalid
-/// states (a planner would stop there) so that every run does the same physical work.
+/// A state a propagate call started from, with the call's control.
+struct CallInput {
+  std::vector<double> state;
+  std::size_t segment = 0;
+};
+
+/// (b) and (d): the planner's inner loop. Each call propagates one propagation step of the
+/// context from the previous call's result, then checks the result. The chain carries on
+/// through invalid states (a planner would stop there) so that every run does the same work.
 class ChainedRunner {
  public:
-  explicit ChainedRunner(PlanningContext& context)
+  explicit ChainedRunner(const PlanningContext& context)
       : context_(context),
         si_(context.spaceInformation()),
         from_(si_->allocState()),
@@ -218,7 +224,9 @@ class ChainedRunner {
 
   unsigned stepsPerCall() const { return stepsPerCall_; }
 
-  SweepOutcome run(const std::vector<Segment>& segments, bool keepFinalState) {
+  /// One sweep; `inputs` (untimed) receives the state and control of every call.
+  Work run(const std::vector<Segment>& segments, std::vector<double>* finalState = nullptr,
+           std::vector<CallInput>* inputs = nullptr) {
     const auto& propagator = context_.propagator();
     const auto& checker = context_.validityChecker();
     const double duration = si_->getPropagationStepSize();
@@ -227,39 +235,34 @@ class ChainedRunner {
     std::copy(start.begin(), start.end(), WorldStateSpace::values(from_));
     const unsigned long long stepsBefore = propagator.counters().physicsSteps;
 
-    SweepOutcome outcome;
-    const double c0 = cpuNow();
+    Work work;
     const Clock::time_point begin = Clock::now();
-    for (const Segment& s : segments) {
+    for (std::size_t k = 0; k < segments.size(); ++k) {
+      const Segment& s = segments[k];
       std::copy(s.velocities.begin(), s.velocities.end(), velocities);
       const unsigned calls = s.steps / stepsPerCall_;
       for (unsigned i = 0; i < calls; ++i) {
-        propagator.propagate(from_, control_, duration, to_);
-        {
-          Violation v = checker.check(WorldStateSpace::values(to_));
-          if (v != Violation::None) {
-            ++outcome.invalid;
-            if (getenv("PT_DEBUG") && outcome.invalid < 4)
-              std::fprintf(stderr, "call %llu: %s\n", outcome.calls + i,
-                           kautham::physics::toString(v));
-          }
+        if (inputs) {
+          const double* values = WorldStateSpace::values(from_);
+          inputs->push_back({std::vector<double>(values, values + start.size()), k});
         }
+        propagator.propagate(from_, control_, duration, to_);
+        if (checker.check(WorldStateSpace::values(to_)) != Violation::None) ++work.invalid;
         std::swap(from_, to_);
       }
-      outcome.calls += calls;
+      work.calls += calls;
     }
-    outcome.seconds = seconds(begin, Clock::now());
-    outcome.cpu = cpuNow() - c0;
-    outcome.steps = propagator.counters().physicsSteps - stepsBefore;
-    if (keepFinalState) {
+    work.seconds = secondsSince(begin);
+    work.steps = propagator.counters().physicsSteps - stepsBefore;
+    if (finalState) {
       const double* values = WorldStateSpace::values(from_);
-      outcome.finalState.assign(values, values + start.size());
+      finalState->assign(values, values + start.size());
     }
-    return outcome;
+    return work;
   }
 
  private:
-  PlanningContext& context_;
+  const PlanningContext& context_;
   ompl::control::SpaceInformationPtr si_;
   ompl::base::State* from_;
   ompl::base::State* to_;
@@ -267,60 +270,94 @@ class ChainedRunner {
   unsigned stepsPerCall_;
 };
 
+/// What a propagate + check call does besides its physics steps, timed alone on the states of
+/// a chained sweep: the sequence of PhysicsPropagator::propagate without the stepping loop
+/// (write the state, set the controls, reset the seed, clear the events, read the state),
+/// then the validity check. Seconds per call, the best of a few rounds.
+struct CallOverhead {
+  double write = 0.0;  ///< writeState (with restoreGeomOrder) + controls + seed + events
+  double read = 0.0;   ///< readState
+  double check = 0.0;  ///< WorldValidityChecker::check
+  double total() const { return write + read + check; }
+};
+
+CallOverhead measureCallOverhead(PlanningContext& context, const std::vector<Segment>& segments,
+                                 const std::vector<CallInput>& inputs, double minSeconds) {
+  World& world = context.world();
+  const auto& checker = context.validityChecker();
+  std::vector<double> out(context.layout().stateSize());
+  CallOverhead best{1e9, 1e9, 1e9};
+  unsigned long long invalid = 0;
+  const Clock::time_point begin = Clock::now();
+  for (int round = 0; round < 5 || secondsSince(begin) < minSeconds; ++round) {
+    CallOverhead sum;
+    for (const CallInput& in : inputs) {
+      Clock::time_point t0 = Clock::now();
+      world.writeState(in.state.data());
+      world.setJointVelocities(segments[in.segment].velocities.data());
+      world.resetSolverSeed();
+      world.takeEvents();
+      Clock::time_point t1 = Clock::now();
+      world.readState(out.data());
+      Clock::time_point t2 = Clock::now();
+      invalid += checker.check(out.data()) != Violation::None;
+      Clock::time_point t3 = Clock::now();
+      sum.write += std::chrono::duration<double>(t1 - t0).count();
+      sum.read += std::chrono::duration<double>(t2 - t1).count();
+      sum.check += std::chrono::duration<double>(t3 - t2).count();
+    }
+    if (sum.total() < best.total()) best = sum;
+  }
+  if (invalid > 1ull << 62) std::printf("?");  // keeps the checks from being optimised away
+  const double n = static_cast<double>(inputs.size());
+  return {best.write / n, best.read / n, best.check / n};
+}
+
 /// Movable objects whose centre ended more than 5 mm from where it started.
 int movedCans(const PlanningContext& context, const std::vector<double>& finalState) {
   const WorldLayout& layout = context.layout();
   int moved = 0;
-  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
-    if (layout.bodies[b].role == BodyRole::Movable &&
-        (WorldLayout::position(finalState.data(), b) -
-         WorldLayout::position(context.startState().data(), b))
-                .norm() > 0.005)
-      ++moved;
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    const Eigen::Vector3d from = WorldLayout::position(context.startState().data(), b);
+    const Eigen::Vector3d to = WorldLayout::position(finalState.data(), b);
+    if (layout.bodies[b].role == BodyRole::Movable && (to - from).norm() > 0.005) ++moved;
+  }
   return moved;
 }
 
-/// Best (highest) rate over the repetitions of one kind of run.
+/// The best (fastest) of the repetitions of one kind of run.
 struct Rate {
   double stepsPerSecond = 0.0;
   double callsPerSecond = 0.0;
 
-  void keepBest(const SweepOutcome& total) {
-    if (total.seconds <= 0.0) return;
-    const double steps = static_cast<double>(total.steps) / total.seconds;
+  void keepBest(const Work& work) {
+    const double steps = static_cast<double>(work.steps) / work.seconds;
     if (steps > stepsPerSecond) {
       stepsPerSecond = steps;
-      callsPerSecond = static_cast<double>(total.calls) / total.seconds;
+      callsPerSecond = static_cast<double>(work.calls) / work.seconds;
     }
   }
 };
 
-SweepOutcome& operator+=(SweepOutcome& sum, const SweepOutcome& one) {
-  sum.seconds += one.seconds;
-  sum.cpu += one.cpu;
-  sum.steps += one.steps;
-  sum.calls += one.calls;
-  sum.invalid += one.invalid;
-  return sum;
-}
-
 struct SceneResult {
   int objects = 0;
   unsigned sweepsPerRepetition = 0;
-  Rate raw;
-  Rate coarse;  ///< (b): one propagation step of the problem per call
-  Rate fine;    ///< (d): one physics step per call
-  unsigned coarseStepsPerCall = 0;
+  unsigned stepsPerCall = 0;  ///< physics steps per propagation step in (b)
+  Rate raw;                   ///< (a)
+  Rate propagate;             ///< (b)
+  Rate propagate1;            ///< (d): one physics step per call
+  CallOverhead overhead;
   int movedRaw = 0;
   int movedChained = 0;
-  unsigned long long invalidCoarse = 0;
-  unsigned long long coarseCallsPerSweep = 0;
+  unsigned long long invalidPerSweep = 0;
+  unsigned long long callsPerSweep = 0;
 
-  double ratio() const { return raw.stepsPerSecond / coarse.stepsPerSecond; }
-  double ratioFine() const { return raw.stepsPerSecond / fine.stepsPerSecond; }
-  /// Microseconds a call costs beyond its physics steps.
-  double overheadPerCall(const Rate& rate, unsigned stepsPerCall) const {
-    return 1e6 * (1.0 / rate.callsPerSecond - stepsPerCall / raw.stepsPerSecond);
+  /// (c): time per physics step through propagate + check over time per raw step.
+  double ratio() const { return raw.stepsPerSecond / propagate.stepsPerSecond; }
+  double ratio1() const { return raw.stepsPerSecond / propagate1.stepsPerSecond; }
+  /// The ratio that the timed overhead alone gives for `steps` physics steps per call.
+  double overheadRatio(unsigned steps) const {
+    return 1.0 + overhead.total() * raw.stepsPerSecond / steps;
   }
 };
 
@@ -328,93 +365,89 @@ struct Options {
   std::vector<int> objects{5, 20, 40};
   double minSeconds = 0.7;
   int repetitions = 3;
+  std::optional<int> maxContacts;
   std::string json;
+  std::string profile;  ///< run one untimed sweep of this kind per scene
 };
 
-SceneResult measure(const Problem& base, int cans, const Options& options) {
-  const Problem scene = makeScene(base, cans);
-  PropagationSettings coarseSettings;  // the problem's propagation step, 0.05 s by default
-  for (const auto& p : scene.planner.parameters)
-    if (p.name == "PropagationStepSize") coarseSettings.propagationStepSize = std::stod(p.value);
-  PropagationSettings fineSettings = coarseSettings;
-  fineSettings.propagationStepSize = scene.physics.stepSize;
+/// The two contexts of a scene: the problem's propagation step, and one physics step.
+struct SceneContexts {
+  Problem problem;
+  std::unique_ptr<PlanningContext> propagate;
+  std::unique_ptr<PlanningContext> propagate1;
+};
 
-  PlanningContext coarseContext(scene, 0, coarseSettings);
-  PlanningContext fineContext(scene, 0, fineSettings);
-  if (coarseContext.startViolation() != Violation::None)
-    throw std::runtime_error(
-        "the start state of the " + std::to_string(cans) +
-        "-can scene is invalid: " + kautham::physics::toString(coarseContext.startViolation()));
-  ChainedRunner coarse(coarseContext);
-  ChainedRunner fine(fineContext);
+SceneContexts makeContexts(const Problem& base, int cans, const Options& options) {
+  SceneContexts scene{makeScene(base, cans), nullptr, nullptr};
+  if (options.maxContacts) scene.problem.physics.maxContacts = *options.maxContacts;
+  PropagationSettings settings;  // what the planners use: the problem's PropagationStepSize
+  for (const auto& p : scene.problem.planner.parameters)
+    if (p.name == "PropagationStepSize") settings.propagationStepSize = std::stod(p.value);
+  scene.propagate = std::make_unique<PlanningContext>(scene.problem, 0, settings);
+  settings.propagationStepSize = scene.problem.physics.stepSize;
+  scene.propagate1 = std::make_unique<PlanningContext>(scene.problem, 0, settings);
+  const Violation start = scene.propagate->startViolation();
+  if (start != Violation::None)
+    throw std::runtime_error("the start state of the " + std::to_string(cans) +
+                             "-can scene is invalid: " + kautham::physics::toString(start));
+  return scene;
+}
+
+/// --profile: one untimed sweep of one kind, for valgrind --tool=callgrind.
+void profileRun(const Problem& base, int cans, const Options& options) {
+  SceneContexts scene = makeContexts(base, cans, options);
+  const std::vector<Segment> segments = sweep();
+  std::vector<double> finalState;
+  Work work;
+  if (options.profile == "raw") {
+    work = rawSweep(*scene.propagate, segments, &finalState);
+  } else {
+    ChainedRunner runner(options.profile == "propagate" ? *scene.propagate : *scene.propagate1);
+    work = runner.run(segments, &finalState);
+  }
+  std::printf("%2d cans, one %s sweep: %llu physics steps, %llu calls, %d cans moved > 5 mm\n",
+              cans, options.profile.c_str(), work.steps, work.calls,
+              movedCans(*scene.propagate, finalState));
+}
+
+SceneResult measure(const Problem& base, int cans, const Options& options) {
+  SceneContexts scene = makeContexts(base, cans, options);
+  ChainedRunner propagate(*scene.propagate);
+  ChainedRunner propagate1(*scene.propagate1);
   const std::vector<Segment> segments = sweep();
   for (const Segment& s : segments)
-    if (s.steps % coarse.stepsPerCall() != 0)
+    if (s.steps % propagate.stepsPerCall() != 0)
       throw std::runtime_error("a sweep segment is not a whole number of propagation steps");
 
   SceneResult result;
   result.objects = cans;
-  result.coarseStepsPerCall = coarse.stepsPerCall();
-  if (const char* only = getenv("PT_ONLY")) {
-    std::string k = only;
-    SweepOutcome o = k == "raw" ? rawSweep(coarseContext, segments, true)
-                     : k == "chained" ? coarse.run(segments, true) : fine.run(segments, true);
-    std::fprintf(stderr, "%s: %llu steps moved %d\n", only, o.steps, movedCans(coarseContext, o.finalState));
-    return result;
-  }
-  // Warm-up, sanity checks, and the number of sweeps that makes a repetition long enough.
-  const SweepOutcome rawOnce = rawSweep(coarseContext, segments, true);
-  const SweepOutcome coarseOnce = coarse.run(segments, true);
-  fine.run(segments, false);
-  result.movedRaw = movedCans(coarseContext, rawOnce.finalState);
-  if (getenv("PT_DEBUG")) {
-    const auto& L = coarseContext.layout();
-    for (std::size_t b = 0; b < L.bodies.size(); ++b) {
-      auto p0 = WorldLayout::position(coarseContext.startState().data(), b);
-      auto p1 = WorldLayout::position(rawOnce.finalState.data(), b);
-      auto p2 = WorldLayout::position(coarseOnce.finalState.data(), b);
-      std::fprintf(stderr,
-                   "%-16s start %.3f %.3f %.3f  raw %.3f %.3f %.3f  chained %.3f %.3f %.3f\n",
-                   L.bodies[b].name.c_str(), p0.x(), p0.y(), p0.z(), p1.x(), p1.y(), p1.z(), p2.x(),
-                   p2.y(), p2.z());
-    }
-  }
-  result.movedChained = movedCans(coarseContext, coarseOnce.finalState);
-  result.invalidCoarse = coarseOnce.invalid;
-  result.coarseCallsPerSweep = coarseOnce.calls;
+  result.stepsPerCall = propagate.stepsPerCall();
+  // Warm-up and sanity checks: the pusher must move cans, and how many states are invalid.
+  std::vector<double> rawFinal, chainedFinal;
+  std::vector<CallInput> inputs;
+  const Work rawOnce = rawSweep(*scene.propagate, segments, &rawFinal);
+  const Work chainedOnce = propagate.run(segments, &chainedFinal, &inputs);
+  result.movedRaw = movedCans(*scene.propagate, rawFinal);
+  result.movedChained = movedCans(*scene.propagate, chainedFinal);
+  result.invalidPerSweep = chainedOnce.invalid;
+  result.callsPerSweep = chainedOnce.calls;
   result.sweepsPerRepetition =
       static_cast<unsigned>(std::max(1.0, std::ceil(options.minSeconds / rawOnce.seconds)));
 
-  // Repetitions interleave the three kinds of run, so a slow phase of the machine hits all.
+  // Each repetition interleaves the three kinds sweep by sweep, so that a busy moment of the
+  // machine slows all of them; the fastest repetition of each kind counts.
   for (int rep = 0; rep < options.repetitions; ++rep) {
-    SweepOutcome raw, chained, single;
+    Work raw, chained, chained1;
     for (unsigned i = 0; i < result.sweepsPerRepetition; ++i) {
-      if (getenv("PT_SWAP")) {
-        single += fine.run(segments, false);
-        chained += coarse.run(segments, false);
-        raw += rawSweep(coarseContext, segments, false);
-      } else {
-      raw += rawSweep(coarseContext, segments, false);
-      chained += coarse.run(segments, false);
-      single += fine.run(segments, false);
-      }
+      raw += rawSweep(*scene.propagate, segments);
+      chained += propagate.run(segments);
+      chained1 += propagate1.run(segments);
     }
-    if (getenv("PT_DEBUG"))
-      std::fprintf(stderr, "rep %d: raw %.0f chained %.0f single %.0f  ratio %.3f %.3f\n", rep,
-                   raw.steps / raw.seconds, chained.steps / chained.seconds,
-                   single.steps / single.seconds,
-                   (chained.seconds / chained.steps) / (raw.seconds / raw.steps),
-                   (single.seconds / single.steps) / (raw.seconds / raw.steps));
-    if (getenv("PT_DEBUG"))
-      std::fprintf(stderr, "  cpu: raw %.0f chained %.0f single %.0f  ratio %.3f %.3f\n",
-                   raw.steps / raw.cpu, chained.steps / chained.cpu,
-                   single.steps / single.cpu,
-                   (chained.cpu / chained.steps) / (raw.cpu / raw.steps),
-                   (single.cpu / single.steps) / (raw.cpu / raw.steps));
     result.raw.keepBest(raw);
-    result.coarse.keepBest(chained);
-    result.fine.keepBest(single);
+    result.propagate.keepBest(chained);
+    result.propagate1.keepBest(chained1);
   }
+  result.overhead = measureCallOverhead(*scene.propagate, segments, inputs, 0.2);
   return result;
 }
 
@@ -433,17 +466,29 @@ std::string cpuModel() {
 }
 
 void printTable(const std::vector<SceneResult>& results) {
-  std::printf("\n%7s %13s %13s %13s %9s %13s %9s\n", "objects", "raw steps/s", "prop+chk/s",
-              "steps/s", "ratio", "1-step call/s", "ratio@1");
+  if (results.empty()) return;
+  const unsigned k = results.front().stepsPerCall;
+  std::printf(
+      "\n(a) raw World::step() loop; (b) propagate (%u steps) + check per call, chained;\n"
+      "(c) ratio = time per physics step in (b) / in (a); (d) the same at 1 step per call\n",
+      k);
+  std::printf("\n%7s %12s %12s %12s %9s %12s %9s\n", "objects", "(a) steps/s", "(b) calls/s",
+              "(b) steps/s", "(c) ratio", "(d) calls/s", "(d) ratio");
   for (const SceneResult& r : results)
-    std::printf("%7d %13.0f %13.0f %13.0f %9.3f %13.0f %9.3f\n", r.objects, r.raw.stepsPerSecond,
-                r.coarse.callsPerSecond, r.coarse.stepsPerSecond, r.ratio(), r.fine.callsPerSecond,
-                r.ratioFine());
-  std::printf("\noverhead per call beyond its physics steps (microseconds):\n");
+    std::printf("%7d %12.0f %12.0f %12.0f %9.3f %12.0f %9.3f\n", r.objects, r.raw.stepsPerSecond,
+                r.propagate.callsPerSecond, r.propagate.stepsPerSecond, r.ratio(),
+                r.propagate1.callsPerSecond, r.ratio1());
+
+  std::printf(
+      "\nNon-physics work of a call, timed alone (us): write state + controls, read state,"
+      "\ncheck; and the ratios it alone accounts for at %u and 1 step per call:\n",
+      k);
+  std::printf("%7s %9s %9s %9s %9s %12s %12s\n", "objects", "total", "write", "read", "check",
+              "ratio (b)", "ratio (d)");
   for (const SceneResult& r : results)
-    std::printf("%7d objects: %.2f us per %u-step call, %.2f us per 1-step call\n", r.objects,
-                r.overheadPerCall(r.coarse, r.coarseStepsPerCall), r.coarseStepsPerCall,
-                r.overheadPerCall(r.fine, 1));
+    std::printf("%7d %9.2f %9.2f %9.2f %9.2f %12.4f %12.4f\n", r.objects, 1e6 * r.overhead.total(),
+                1e6 * r.overhead.write, 1e6 * r.overhead.read, 1e6 * r.overhead.check,
+                r.overheadRatio(r.stepsPerCall), r.overheadRatio(1));
 }
 
 void writeJson(const std::string& file, const std::vector<SceneResult>& results,
@@ -454,21 +499,27 @@ void writeJson(const std::string& file, const std::vector<SceneResult>& results,
       << "  \"ode\": \"" << kautham::physics::OdeLibrary::version() << "\",\n"
       << "  \"physics_step\": " << base.physics.stepSize << ",\n"
       << "  \"solver_iterations\": " << base.physics.solverIterations << ",\n"
-      << "  \"max_contacts\": " << base.physics.maxContacts << ",\n"
+      << "  \"max_contacts\": " << options.maxContacts.value_or(base.physics.maxContacts) << ",\n"
       << "  \"sweep_steps\": " << totalSteps(sweep()) << ",\n"
+      << "  \"min_seconds_per_repetition\": " << options.minSeconds << ",\n"
       << "  \"repetitions\": " << options.repetitions << ",\n"
       << "  \"scenes\": [\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const SceneResult& r = results[i];
     out << "    {\"objects\": " << r.objects << ", \"raw_steps_per_s\": " << r.raw.stepsPerSecond
-        << ", \"propagate_check_calls_per_s\": " << r.coarse.callsPerSecond
-        << ", \"propagate_steps_per_s\": " << r.coarse.stepsPerSecond
-        << ", \"steps_per_call\": " << r.coarseStepsPerCall << ", \"ratio\": " << r.ratio()
-        << ", \"one_step_calls_per_s\": " << r.fine.callsPerSecond
-        << ", \"ratio_one_step_per_call\": " << r.ratioFine()
+        << ", \"steps_per_call\": " << r.stepsPerCall
+        << ", \"propagate_check_calls_per_s\": " << r.propagate.callsPerSecond
+        << ", \"propagate_check_steps_per_s\": " << r.propagate.stepsPerSecond
+        << ", \"ratio\": " << r.ratio()
+        << ", \"one_step_calls_per_s\": " << r.propagate1.callsPerSecond
+        << ", \"ratio_one_step_per_call\": " << r.ratio1()
+        << ", \"overhead_us_per_call\": " << 1e6 * r.overhead.total()
+        << ", \"overhead_write_us\": " << 1e6 * r.overhead.write
+        << ", \"overhead_read_us\": " << 1e6 * r.overhead.read
+        << ", \"overhead_check_us\": " << 1e6 * r.overhead.check
         << ", \"cans_moved_raw\": " << r.movedRaw << ", \"cans_moved_chained\": " << r.movedChained
-        << ", \"invalid_states_per_sweep\": " << r.invalidCoarse
-        << ", \"calls_per_sweep\": " << r.coarseCallsPerSweep
+        << ", \"invalid_states_per_sweep\": " << r.invalidPerSweep
+        << ", \"calls_per_sweep\": " << r.callsPerSweep
         << ", \"sweeps_per_repetition\": " << r.sweepsPerRepetition << "}"
         << (i + 1 < results.size() ? ",\n" : "\n");
   }
@@ -480,30 +531,42 @@ void writeJson(const std::string& file, const std::vector<SceneResult>& results,
 int main(int argc, char** argv) {
   Options options;
   CLI::App app{
-      "Physics throughput: raw ODE steps per second against PhysicsPropagator::propagate + "
-      "WorldValidityChecker::check chained as a planner does, on problems/pusher_cans_5.xml "
-      "with N cans and a pusher sweeping the table. The ratio is the time per physics step "
-      "through the propagator over the time per raw step (the project aims at <= 1.15)."};
-  app.add_option("--objects", options.objects, "Numbers of movable cans, one scene each")
+      "Physics throughput on problems/pusher_cans_5.xml with N cans, a pusher sweeping the "
+      "table with fixed controls: (a) raw ODE steps per second, (b) PhysicsPropagator::"
+      "propagate + WorldValidityChecker::check calls chained as a planner does, (c) the ratio "
+      "of their times per physics step (the project aims at <= 1.15), (d) that ratio with one "
+      "physics step per call. See docs/performance.md."};
+  app.add_option("--objects", options.objects, "Numbers of movable cans, one scene each (<= 52)")
       ->delimiter(',')
       ->capture_default_str();
   app.add_option("--min-time", options.minSeconds,
-                 "Seconds each repetition runs at least (whole sweeps)")
+                 "Seconds of raw stepping in each repetition, at least (whole sweeps)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  app.add_option("--repetitions", options.repetitions, "Repetitions, the best one counts")
+  app.add_option("--repetitions", options.repetitions, "Repetitions; the fastest one counts")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--max-contacts", options.maxContacts,
+                 "Override the problem's contacts per pair (8), for comparisons only")
+      ->check(CLI::Range(1, 64));
   app.add_option("--json", options.json, "Also write the results to this JSON file");
+  app.add_option("--profile", options.profile,
+                 "Run one untimed sweep of one kind per scene and exit (for valgrind)")
+      ->check(CLI::IsMember({"raw", "propagate", "propagate1"}));
   CLI11_PARSE(app, argc, argv);
 
   try {
     const Problem base = kautham::core::loadProblem(std::filesystem::path(KAUTHAM_SOURCE_DIR) /
                                                     "problems" / "pusher_cans_5.xml");
+    if (!options.profile.empty()) {
+      for (int cans : options.objects) profileRun(base, cans, options);
+      return 0;
+    }
     std::printf("CPU: %s; ODE %s, QuickStep %d iterations, step %g s, %d contacts per pair\n",
                 cpuModel().c_str(), kautham::physics::OdeLibrary::version(),
-                base.physics.solverIterations, base.physics.stepSize, base.physics.maxContacts);
-    std::printf("sweep: %u physics steps; each repetition >= %.2f s; best of %d\n",
+                base.physics.solverIterations, base.physics.stepSize,
+                options.maxContacts.value_or(base.physics.maxContacts));
+    std::printf("sweep: %u physics steps; each repetition >= %.2f s of raw stepping; best of %d\n",
                 totalSteps(sweep()), options.minSeconds, options.repetitions);
 
     std::vector<SceneResult> results;
@@ -511,10 +574,10 @@ int main(int argc, char** argv) {
       results.push_back(measure(base, cans, options));
       const SceneResult& r = results.back();
       std::printf(
-          "%2d cans: %u sweeps per repetition; cans moved > 5 mm by one sweep: %d (raw "
-          "stepping), %d (chained); invalid states in a chained sweep: %llu of %llu\n",
-          cans, r.sweepsPerRepetition, r.movedRaw, r.movedChained, r.invalidCoarse,
-          r.coarseCallsPerSweep);
+          "%2d cans: %u sweep(s) per repetition; cans moved > 5 mm by a sweep: %d (a), %d (b); "
+          "invalid states in a sweep of (b): %llu of %llu\n",
+          cans, r.sweepsPerRepetition, r.movedRaw, r.movedChained, r.invalidPerSweep,
+          r.callsPerSweep);
       std::fflush(stdout);
     }
     printTable(results);
