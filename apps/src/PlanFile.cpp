@@ -59,6 +59,37 @@ json bodiesJson(const WorldLayout& layout) {
   return bodies;
 }
 
+json shapeJson(const core::Shape& shape) {
+  struct Describe {
+    json operator()(const core::Box& b) const {
+      return {{"type", "box"}, {"size", {b.size.x(), b.size.y(), b.size.z()}}};
+    }
+    json operator()(const core::Cylinder& c) const {
+      return {{"type", "cylinder"}, {"radius", c.radius}, {"length", c.length}};
+    }
+    json operator()(const core::Sphere& s) const {
+      return {{"type", "sphere"}, {"radius", s.radius}};
+    }
+  };
+  return std::visit(Describe{}, shape);
+}
+
+/// Every collision shape, so a viewer can draw the scene from the plan file alone.
+json shapesJson(const WorldLayout& layout) {
+  json shapes = json::array();
+  for (const physics::ShapeInfo& s : layout.shapes) {
+    json entry = shapeJson(s.shape);
+    const Eigen::Quaterniond q(s.pose.linear());
+    const Eigen::Vector3d p = s.pose.translation();
+    entry["owner"] = s.owner;
+    entry["role"] = s.role;
+    entry["body"] = s.body >= 0 ? json(s.body) : json(nullptr);
+    entry["pose"] = {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z()};
+    shapes.push_back(entry);
+  }
+  return shapes;
+}
+
 }  // namespace
 
 json planToJson(const physics::PlanningContext& context, const planners::PlanRequest& request,
@@ -103,6 +134,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"propagation_step_size", stepSize},
       {"controls", controlsJson(outcome, stepSize)},
       {"bodies", bodiesJson(layout)},
+      {"shapes", shapesJson(layout)},
       {"frames", trajectoryJson(layout, replay)},
   };
 }

@@ -14,7 +14,8 @@ namespace kautham::apps {
 constexpr int kPlanFormatVersion = 1;
 
 /// The plan file: the problem, planner, parameters and seed that produced it, statistics,
-/// the controls with durations and the pose of every body along the replayed plan.
+/// the controls with durations, every collision shape (static ones in the world, the others
+/// in their body's frame) and the pose of every body along the replayed plan.
 /// Everything but the "timing" object is identical for identical runs.
 nlohmann::json planToJson(const physics::PlanningContext& context,
                           const planners::PlanRequest& request,

@@ -102,6 +102,21 @@ struct GroupMass {
   }
 };
 
+const char* roleName(GeomTag::Kind kind) {
+  switch (kind) {
+    case GeomTag::Kind::RobotLink:
+    case GeomTag::Kind::RobotBase:
+      return "robot";
+    case GeomTag::Kind::Fixed:
+      return "fixed";
+    case GeomTag::Kind::Movable:
+      return "movable";
+    case GeomTag::Kind::Target:
+      return "target";
+  }
+  return "?";
+}
+
 }  // namespace
 
 class World::Builder {
@@ -141,6 +156,8 @@ class World::Builder {
         dGeomSetCategoryBits(geom, tag->category());
         dGeomSetCollideBits(geom, tag->collidesWith());
         const Eigen::Isometry3d pose = topInWorldOrBody * groups.inGroup[link] * collision.origin;
+        const int bodyIndex = body ? static_cast<int>(world_.bodies_.size()) : -1;
+        world_.layout_.shapes.push_back({collision.shape, bodyIndex, pose, name, roleName(kind)});
         dMatrix3 rotation;
         toOdeRotation(pose.linear(), rotation);
         if (body) {

@@ -69,6 +69,8 @@ TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
   EXPECT_EQ(bodies, 9u);
   for (const auto& frame : plan["frames"]) EXPECT_EQ(frame["poses"].size(), bodies);
   EXPECT_GT(plan["statistics"]["physics_steps"].get<long>(), 0);
+  // Every collision shape, for viewers: 3 gripper boxes, the table, the glass, 5 cans.
+  EXPECT_EQ(plan["shapes"].size(), 10u);
 }
 
 TEST_F(PlanCommandTest, SameCommandTwiceGivesTheSamePlanFile) {

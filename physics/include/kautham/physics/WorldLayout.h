@@ -22,6 +22,16 @@ struct BodyInfo {
   Eigen::Isometry3d linkInBody = Eigen::Isometry3d::Identity();
 };
 
+/// A collision shape of the world, for pictures and replays: on a body (placed in the body
+/// frame) or static (placed in the world).
+struct ShapeInfo {
+  core::Shape shape;
+  int body = -1;  ///< index into WorldLayout::bodies; -1: static geometry
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  std::string owner;  ///< object name, or robot/link
+  std::string role;   ///< "robot", "fixed", "movable" or "target"
+};
+
 /// Reasons why a propagation step produced an invalid state; stored as bit flags in the state.
 enum ContactEvent : unsigned {
   kNoEvent = 0,
@@ -42,6 +52,7 @@ class WorldLayout {
   static constexpr std::size_t kAngularVelocity = 10;
 
   std::vector<BodyInfo> bodies;
+  std::vector<ShapeInfo> shapes;
   int goalBody = -1;  ///< the body that carries the goal link
   Eigen::Isometry3d goalLinkInBody = Eigen::Isometry3d::Identity();
 
