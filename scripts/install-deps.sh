@@ -10,6 +10,7 @@ PACKAGES=(
   libassimp-dev libtinyxml2-dev liboctomap-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  libjs-three chromium
 )
 
 missing=()

@@ -9,6 +9,7 @@ namespace kautham::apps {
 
 void addPlanCommand(CLI::App& app, int& exitCode);
 void addPlannersCommand(CLI::App& app, int& exitCode);
+void addViewCommand(CLI::App& app, int& exitCode);
 
 constexpr int kExitSolved = 0;
 constexpr int kExitNotSolved = 1;

@@ -11,6 +11,7 @@
 
 #include "Commands.h"
 #include "PlanFile.h"
+#include "PlanViewer.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -26,6 +27,8 @@ struct PlanOptions {
   std::uint32_t seed = 1;
   std::vector<std::string> sets;
   std::string output;
+  std::string html;
+  std::string threeDir;
   std::vector<std::string> modelDirs;
   std::size_t query = 0;
 };
@@ -110,6 +113,9 @@ std::unique_ptr<physics::PlanningContext> makeContext(const core::Problem& probl
 }
 
 int runPlan(const PlanOptions& options) {
+  // Before planning, so that a missing three.js does not cost the planning time.
+  const std::filesystem::path threeDir =
+      options.html.empty() ? std::filesystem::path() : findThreeDir(options.threeDir);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
   if (options.query >= problem.queries.size())
@@ -128,9 +134,17 @@ int runPlan(const PlanOptions& options) {
 
   const physics::ReplayResult replay = physics::replay(context, outcome.controls);
   printSummary(context, request, outcome, replay);
-  if (!options.output.empty()) {
-    writeJsonFile(options.output, planToJson(context, request, outcome, replay));
-    fmt::print("wrote     {}\n", options.output);
+  if (!options.output.empty() || !options.html.empty()) {
+    const nlohmann::json plan = planToJson(context, request, outcome, replay);
+    if (!options.output.empty()) {
+      writeJsonFile(options.output, plan);
+      fmt::print("wrote     {}\n", options.output);
+    }
+    if (!options.html.empty()) {
+      checkPlanForView(plan, "the plan");
+      writeTextFile(options.html, planToHtml(plan, threeDir));
+      fmt::print("wrote     {}\n", options.html);
+    }
   }
   if (outcome.solved && !replay.reachedGoal)
     fmt::print(stderr, "warning: the replayed plan does not reach the goal; please report this\n");
@@ -152,6 +166,11 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                    "set a planner parameter, NAME=VALUE (repeatable; see `kautham planners`)")
       ->allow_extra_args(false);
   command->add_option("-o,--output", options->output, "write the plan to this JSON file");
+  command->add_option("--html", options->html,
+                      "write the plan as an animated HTML page too (see `kautham view`)");
+  command->add_option("--three-dir", options->threeDir,
+                      "three.js folder for --html (default: " + kDefaultThreeDir.string() +
+                          ", from Debian's libjs-three)");
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
   command->add_option("--query", options->query, "index of the query to plan")
@@ -159,6 +178,9 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   command->callback([options, &exitCode] {
     try {
       exitCode = runPlan(*options);
+    } catch (const ViewError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitBadInput;
     } catch (const core::InputError& e) {
       fmt::print(stderr, "error: {}\n", e.what());
       exitCode = kExitBadInput;

@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
   app.footer(
       "Exit codes: 0 solved, 1 ran but not solved, 2 bad input.\n"
       "Example: kautham plan problems/pusher_cans_5.xml --seed 1 -o out/plan.json\n"
+      "         kautham view out/plan.json -o out/plan.html\n"
       "Problem files: docs/problem-format.md");
   app.fallthrough();
 
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   int exitCode = kautham::apps::kExitSolved;
   kautham::apps::addPlanCommand(app, exitCode);
   kautham::apps::addPlannersCommand(app, exitCode);
+  kautham::apps::addViewCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -1,0 +1,190 @@
+#include "PlanViewer.h"
+
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "PlanFile.h"
+
+namespace kautham::apps {
+
+/// The page template, apps/src/viewer_template.html, embedded at configure time (see
+/// apps/CMakeLists.txt and ViewerTemplate.cpp.in).
+extern const char kViewerTemplate[];
+
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kThreeFile = "three.min.js";
+const fs::path kOrbitControlsFile = fs::path("examples") / "js" / "controls" / "OrbitControls.js";
+
+std::string readTextFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ViewError(fmt::format("cannot read '{}'", file.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void replaceAll(std::string& text, const std::string& from, const std::string& to) {
+  for (std::size_t at = text.find(from); at != std::string::npos;
+       at = text.find(from, at + to.size()))
+    text.replace(at, from.size(), to);
+}
+
+/// Replaces the one placeholder `token` of the template.
+void fill(std::string& page, const std::string& token, const std::string& text) {
+  const std::size_t at = page.find(token);
+  if (at == std::string::npos) throw std::logic_error("viewer template lacks " + token);
+  page.replace(at, token.size(), text);
+}
+
+/// Script text that cannot end its <script> element early.
+std::string scriptSafe(std::string script) {
+  replaceAll(script, "</script", "<\\/script");
+  replaceAll(script, "</SCRIPT", "<\\/SCRIPT");
+  return script;
+}
+
+bool isPose(const nlohmann::json& pose) {
+  if (!pose.is_array() || pose.size() != 7) return false;
+  for (const auto& value : pose)
+    if (!value.is_number()) return false;
+  return true;
+}
+
+bool isPositiveNumber(const nlohmann::json& object, const char* key) {
+  return object.contains(key) && object[key].is_number() && object[key].get<double>() > 0.0;
+}
+
+void checkShape(const nlohmann::json& shape, std::size_t index, std::size_t bodies,
+                const std::string& source) {
+  const auto fail = [&](const std::string& what) {
+    throw ViewError(fmt::format("{}: shapes[{}] {}", source, index, what));
+  };
+  if (!shape.is_object()) fail("is not an object");
+  const std::string type = shape.value("type", "");
+  if (type == "box") {
+    const auto& size = shape.contains("size") ? shape["size"] : nlohmann::json();
+    if (!size.is_array() || size.size() != 3 || !size[0].is_number() || !size[1].is_number() ||
+        !size[2].is_number())
+      fail("is a box without a \"size\" of three numbers");
+  } else if (type == "cylinder") {
+    if (!isPositiveNumber(shape, "radius") || !isPositiveNumber(shape, "length"))
+      fail("is a cylinder without a positive \"radius\" and \"length\"");
+  } else if (type == "sphere") {
+    if (!isPositiveNumber(shape, "radius")) fail("is a sphere without a positive \"radius\"");
+  } else {
+    fail(fmt::format("has type '{}'; the viewer shows box, cylinder and sphere", type));
+  }
+  if (!shape.contains("pose") || !isPose(shape["pose"]))
+    fail("has no \"pose\" of seven numbers [x, y, z, qw, qx, qy, qz]");
+  if (!shape.contains("body")) fail("has no \"body\" (an index into \"bodies\", or null)");
+  const auto& body = shape["body"];
+  if (!body.is_null() && !(body.is_number_integer() && body.get<std::int64_t>() >= 0 &&
+                           static_cast<std::size_t>(body.get<std::int64_t>()) < bodies))
+    fail(fmt::format("has \"body\" {}, not null nor an index below {}", body.dump(), bodies));
+}
+
+}  // namespace
+
+fs::path findThreeDir(const std::string& overrideDir) {
+  const fs::path dir = overrideDir.empty() ? kDefaultThreeDir : fs::path(overrideDir);
+  for (const fs::path& file : {kThreeFile, kOrbitControlsFile})
+    if (!fs::is_regular_file(dir / file))
+      throw ViewError(fmt::format(
+          "three.js not found: '{}' does not exist. Install Debian's libjs-three package "
+          "(apt-get install libjs-three, or scripts/install-deps.sh), or pass --three-dir with "
+          "the folder holding three.min.js and examples/js/controls/OrbitControls.js",
+          (dir / file).string()));
+  return dir;
+}
+
+void checkPlanForView(const nlohmann::json& plan, const std::string& source) {
+  if (!plan.is_object()) throw ViewError(source + ": not a kautham plan (not a JSON object)");
+  if (!plan.contains("format") || plan["format"] != "kautham-plan")
+    throw ViewError(
+        fmt::format("{}: not a kautham plan (\"format\" is {}, expected \"kautham-plan\")", source,
+                    plan.contains("format") ? plan["format"].dump() : "missing"));
+  if (!plan.contains("format_version") || !plan["format_version"].is_number_integer())
+    throw ViewError(source + ": the plan has no integer \"format_version\"");
+  const auto version = plan["format_version"].get<std::int64_t>();
+  if (version != kPlanFormatVersion)
+    throw ViewError(fmt::format(
+        "{}: plan format version {} is not supported; this kautham reads version {}{}", source,
+        version, kPlanFormatVersion,
+        version < kPlanFormatVersion ? " (plan the problem again to get a current plan file)"
+                                     : " (the file is from a newer kautham)"));
+  for (const char* key : {"bodies", "shapes", "frames"})
+    if (!plan.contains(key) || !plan[key].is_array())
+      throw ViewError(fmt::format("{}: the plan has no \"{}\" array", source, key));
+
+  const auto& bodies = plan["bodies"];
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!bodies[i].is_object() || !bodies[i].contains("name") || !bodies[i]["name"].is_string())
+      throw ViewError(fmt::format("{}: bodies[{}] has no \"name\"", source, i));
+  const auto& shapes = plan["shapes"];
+  if (shapes.empty()) throw ViewError(source + ": the plan has no shapes to show");
+  for (std::size_t i = 0; i < shapes.size(); ++i) checkShape(shapes[i], i, bodies.size(), source);
+  const auto& frames = plan["frames"];
+  if (frames.empty()) throw ViewError(source + ": the plan has no frames to show");
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const auto& frame = frames[i];
+    if (!frame.is_object() || !frame.contains("t") || !frame["t"].is_number())
+      throw ViewError(fmt::format("{}: frames[{}] has no time \"t\"", source, i));
+    if (!frame.contains("poses") || !frame["poses"].is_array() ||
+        frame["poses"].size() != bodies.size())
+      throw ViewError(fmt::format("{}: frames[{}] has no \"poses\" array of one pose per body ({})",
+                                  source, i, bodies.size()));
+    for (const auto& pose : frame["poses"])
+      if (!isPose(pose))
+        throw ViewError(fmt::format(
+            "{}: frames[{}] holds a pose that is not seven numbers [x, y, z, qw, qx, qy, qz]",
+            source, i));
+  }
+}
+
+nlohmann::json readPlanForView(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw ViewError(fmt::format("{}: cannot open the plan file", file.string()));
+  nlohmann::json plan;
+  try {
+    plan = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw ViewError(fmt::format("{}: not a JSON file (parse error at byte {}): {}", file.string(),
+                                e.byte, e.what()));
+  }
+  checkPlanForView(plan, file.string());
+  return plan;
+}
+
+std::string planToHtml(const nlohmann::json& plan, const fs::path& threeDir) {
+  // The plan sits in a <script type="application/json"> element: "</" and "<!--" may only occur
+  // inside JSON strings, where "<\/" and "\u003c" mean the same and cannot close the element.
+  std::string planJson = plan.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  replaceAll(planJson, "</", "<\\/");
+  replaceAll(planJson, "<!--", "\\u003c!--");
+
+  std::string page = kViewerTemplate;
+  fill(page, "/*%KAUTHAM_THREE_JS%*/", scriptSafe(readTextFile(threeDir / kThreeFile)));
+  fill(page, "/*%KAUTHAM_ORBIT_CONTROLS%*/",
+       scriptSafe(readTextFile(threeDir / kOrbitControlsFile)));
+  fill(page, "%KAUTHAM_PLAN_JSON%", planJson);
+  return page;
+}
+
+void writeTextFile(const fs::path& file, const std::string& text) {
+  if (file.has_parent_path()) fs::create_directories(file.parent_path());
+  const fs::path temporary = file.string() + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out) throw std::runtime_error("cannot write '" + temporary.string() + "'");
+    out << text;
+    if (!out) throw std::runtime_error("failed writing '" + temporary.string() + "'");
+  }
+  fs::rename(temporary, file);
+}
+
+}  // namespace kautham::apps

@@ -1,0 +1,56 @@
+// `kautham view PLAN -o plan.html`: the plan file as an animated, self-contained HTML page.
+
+#include <fmt/format.h>
+
+#include "Commands.h"
+#include "PlanViewer.h"
+
+namespace kautham::apps {
+
+namespace {
+
+struct ViewOptions {
+  std::string plan;
+  std::string output;
+  std::string threeDir;
+};
+
+int runView(const ViewOptions& options) {
+  const std::filesystem::path threeDir = findThreeDir(options.threeDir);
+  const nlohmann::json plan = readPlanForView(options.plan);
+  const std::filesystem::path output =
+      options.output.empty() ? std::filesystem::path(options.plan).replace_extension(".html")
+                             : std::filesystem::path(options.output);
+  writeTextFile(output, planToHtml(plan, threeDir));
+  fmt::print("wrote     {}\n", output.string());
+  return kExitSolved;
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<ViewOptions>();
+  CLI::App* command = app.add_subcommand(
+      "view", "Write a plan file as an animated HTML page (self-contained, works offline)");
+  command->add_option("plan", options->plan, "plan file (JSON, from `kautham plan -o`)")
+      ->required();
+  command->add_option("-o,--output", options->output,
+                      "HTML file to write (default: the plan file with extension .html)");
+  command->add_option("--three-dir", options->threeDir,
+                      "folder with three.min.js and examples/js/controls/OrbitControls.js "
+                      "(default: " +
+                          kDefaultThreeDir.string() + ", from Debian's libjs-three)");
+  command->callback([options, &exitCode] {
+    try {
+      exitCode = runView(*options);
+    } catch (const ViewError& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitBadInput;
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace kautham::apps

@@ -1,0 +1,229 @@
+// The plan viewer in a real browser: `kautham plan --html` and `kautham view` pages opened in
+// Debian's headless Chromium (a missing Chromium fails these tests: scripts/install-deps.sh
+// installs it), plus malformed plan files.
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "TestPaths.h"
+
+namespace kautham::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandRun {
+  int exitCode = -1;
+  std::string output;  ///< stdout and stderr together, or stdout only (see run)
+};
+
+CommandRun run(const std::string& command) {
+  CommandRun result;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return result;
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) result.output.append(buffer, n);
+  const int status = pclose(pipe);
+  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+CommandRun kautham(const std::string& arguments) {
+  return run("cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY + "' " +
+             arguments + " 2>&1");
+}
+
+std::string readFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void writeFile(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+}
+
+/// Debian's Chromium, or "" when it is not installed.
+std::string findChromium() {
+  for (const char* name : {"chromium", "chromium-browser"}) {
+    const CommandRun which = run(std::string("command -v ") + name + " 2>/dev/null");
+    if (which.exitCode == 0 && !which.output.empty())
+      return which.output.substr(0, which.output.find('\n'));
+  }
+  return "";
+}
+
+/// Headless Chromium on a file with a URL hash; `mode` is --dump-dom or --screenshot=FILE.
+/// Returns stdout (the DOM for --dump-dom); Chromium's log goes to `folder`/chromium.log.
+CommandRun chromium(const std::string& binary, const fs::path& folder, const fs::path& page,
+                    const std::string& hash, const std::string& mode) {
+  const fs::path profile = folder / ("profile" + std::to_string(std::rand()));
+  const std::string command =
+      "timeout 120 '" + binary +
+      "' --headless --no-sandbox --disable-gpu --use-angle=swiftshader "
+      "--enable-unsafe-swiftshader --disable-quic --no-first-run --disable-background-networking "
+      "--disable-component-update --disable-sync --user-data-dir='" +
+      profile.string() + "' --virtual-time-budget=5000 --window-size=1200,800 " + mode +
+      " 'file://" + fs::absolute(page).string() + hash + "' 2>>'" +
+      (folder / "chromium.log").string() + "'";
+  return run(command);
+}
+
+/// The page text with the inlined libraries' <script> elements cut out.
+std::string withoutLibraries(std::string page) {
+  for (const std::string id : {"lib-three", "lib-orbitcontrols"}) {
+    const std::size_t begin = page.find("<script id=\"" + id + "\">");
+    const std::size_t end = page.find("</script>", begin);
+    if (begin == std::string::npos || end == std::string::npos) return "missing " + id;
+    page.erase(begin, end - begin);
+  }
+  return page;
+}
+
+/// Every external URL in the page or a fetch of one; "" when there is none. Outside the inlined
+/// libraries no "http://" or "https://" may occur at all; inside them only XML namespace names
+/// (never fetched) and URLs in comments (author credits, a paper cited in a shader comment).
+std::string externalUrls(const std::string& page) {
+  std::string found;
+  for (const std::string tag : {"<script src", "<link", "<iframe", "<img", "@import", "url("})
+    if (page.find(tag) != std::string::npos) found += " [" + tag + "]";
+  const std::string own = withoutLibraries(page);
+  for (const std::string text : {"http://", "https://", "src=", "//cdn", "fetch("})
+    if (own.find(text) != std::string::npos) found += " [" + text + " outside the libraries]";
+  const std::regex url("https?://[^\"'\\s)]*");
+  for (auto it = std::sregex_iterator(page.begin(), page.end(), url); it != std::sregex_iterator();
+       ++it) {
+    const std::string address = it->str();
+    if (address == "http://www.w3.org/1999/xhtml") continue;  // namespace of createElementNS
+    // In a comment: "//" or a leading "*" between the line's (or string's) start and the URL.
+    const std::size_t at = static_cast<std::size_t>(it->position());
+    const std::size_t lineStart = page.find_last_of("\n\"", at);
+    const std::string before = page.substr(lineStart + 1, at - lineStart - 1);
+    const std::size_t firstChar = before.find_first_not_of(" \t");
+    if (before.find("//") != std::string::npos ||
+        (firstChar != std::string::npos && before[firstChar] == '*'))
+      continue;
+    found += " [" + address + "]";
+  }
+  return found;
+}
+
+class ViewCommandTest : public ::testing::Test {
+ protected:
+  fs::path folder =
+      fs::temp_directory_path() /
+      ("kautham_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+       ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  void SetUp() override { fs::create_directories(folder); }
+  void TearDown() override { fs::remove_all(folder); }
+
+  /// `kautham view` on a plan file holding `text`: expects exit 2, a message naming the file
+  /// and containing `expected`, and no page written.
+  void expectRejected(const std::string& text, const std::string& expected) {
+    const fs::path plan = folder / "bad plan.json";
+    const fs::path page = folder / "bad.html";
+    writeFile(plan, text);
+    const CommandRun view = kautham("view '" + plan.string() + "' -o '" + page.string() + "'");
+    EXPECT_EQ(view.exitCode, 2) << view.output;
+    EXPECT_NE(view.output.find(plan.string()), std::string::npos) << view.output;
+    EXPECT_NE(view.output.find(expected), std::string::npos) << view.output;
+    EXPECT_FALSE(fs::exists(page));
+  }
+};
+
+TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
+  const std::string browser = findChromium();
+  ASSERT_FALSE(browser.empty())
+      << "Chromium is not installed; scripts/install-deps.sh installs Debian's chromium";
+
+  const fs::path page = folder / "plan.html";
+  const CommandRun plan =
+      kautham("plan problems/pusher_cans_5.xml --seed 1 --html '" + page.string() + "'");
+  ASSERT_EQ(plan.exitCode, 0) << plan.output;
+  const std::string html = readFile(page);
+  ASSERT_GT(html.size(), 100000u) << "three.js should be inlined";
+  EXPECT_EQ(externalUrls(html), "");
+
+  const CommandRun dom = chromium(browser, folder, page, "#selftest", "--dump-dom");
+  ASSERT_EQ(dom.exitCode, 0) << readFile(folder / "chromium.log");
+  std::smatch title;
+  ASSERT_TRUE(std::regex_search(dom.output, title, std::regex("<title>([^<]*)</title>")))
+      << dom.output.substr(0, 2000);
+  std::smatch pass;
+  const std::string verdict = title[1];
+  ASSERT_TRUE(std::regex_match(
+      verdict, pass,
+      std::regex("SELFTEST PASS bodies=(\\d+) shapes=(\\d+) moved=(\\S+):([0-9.]+)")))
+      << verdict;
+  EXPECT_EQ(pass[1], "9");
+  EXPECT_EQ(pass[2], "10");
+  EXPECT_EQ(pass[3].str().rfind("can", 0), 0u) << verdict;  // a pushed can
+  EXPECT_GT(std::stod(pass[4]), 0.01) << verdict;
+
+  const fs::path screenshot = folder / "plan.png";
+  const CommandRun shot =
+      chromium(browser, folder, page, "#frame=140", "--screenshot='" + screenshot.string() + "'");
+  ASSERT_EQ(shot.exitCode, 0) << readFile(folder / "chromium.log");
+  ASSERT_TRUE(fs::exists(screenshot)) << readFile(folder / "chromium.log");
+  EXPECT_EQ(readFile(screenshot).substr(0, 8), "\x89PNG\r\n\x1a\n");
+  EXPECT_GT(fs::file_size(screenshot), 10000u);
+}
+
+TEST_F(ViewCommandTest, ViewMakesTheSamePageAsPlanHtml) {
+  const fs::path planFile = folder / "plan.json";
+  const CommandRun plan =
+      kautham("plan problems/pusher_cans_5.xml --seed 1 -o '" + planFile.string() + "' --html '" +
+              (folder / "a.html").string() + "'");
+  ASSERT_EQ(plan.exitCode, 0) << plan.output;
+  const CommandRun view =
+      kautham("view '" + planFile.string() + "' -o '" + (folder / "b.html").string() + "'");
+  ASSERT_EQ(view.exitCode, 0) << view.output;
+  const std::string page = readFile(folder / "b.html");
+  EXPECT_EQ(page, readFile(folder / "a.html"));
+  EXPECT_NE(page.find("<script type=\"application/json\" id=\"plan\">{"), std::string::npos);
+  EXPECT_EQ(externalUrls(page), "");
+}
+
+TEST_F(ViewCommandTest, MalformedPlansExitTwoNamingTheFile) {
+  expectRejected("this is not JSON", "not a JSON file (parse error at byte 2");
+  expectRejected("", "not a JSON file");
+  expectRejected(R"({"format": "something-else", "format_version": 1})", "not a kautham plan");
+  expectRejected(R"({"format_version": 1, "bodies": [], "shapes": [], "frames": []})",
+                 "not a kautham plan");
+  expectRejected(R"({"format": "kautham-plan", "format_version": 0, "bodies": [], "shapes": [],
+                     "frames": []})",
+                 "plan format version 0 is not supported");
+  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [], "shapes": []})",
+                 "no \"frames\"");
+  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [],
+                     "shapes": [{"type": "box", "size": [1, 1, 1], "body": null,
+                                 "pose": [0, 0, 0, 1, 0, 0, 0]}],
+                     "frames": [{"t": 0, "poses": [[0, 0, 0, 1, 0, 0, 0]]}]})",
+                 "one pose per body");
+}
+
+TEST_F(ViewCommandTest, MissingPlanOrThreeJsExitsTwo) {
+  const CommandRun missing = kautham("view '" + (folder / "none.json").string() + "'");
+  EXPECT_EQ(missing.exitCode, 2) << missing.output;
+  EXPECT_NE(missing.output.find("none.json"), std::string::npos) << missing.output;
+
+  const CommandRun noThree =
+      kautham("plan problems/pusher_cans_5.xml --html '" + (folder / "p.html").string() +
+              "' --three-dir '" + (folder / "nothing").string() + "'");
+  EXPECT_EQ(noThree.exitCode, 2) << noThree.output;
+  EXPECT_NE(noThree.output.find("libjs-three"), std::string::npos) << noThree.output;
+  EXPECT_FALSE(fs::exists(folder / "p.html"));
+}
+
+}  // namespace
+}  // namespace kautham::apps
