@@ -1,5 +1,6 @@
 #include "PlanFile.h"
 
+#include <cmath>
 #include <fstream>
 #include <stdexcept>
 
@@ -90,11 +91,33 @@ json shapesJson(const WorldLayout& layout) {
   return shapes;
 }
 
+/// Where the goal link went along the replay, frame by frame.
+json linkPathJson(const WorldLayout& layout, const physics::ReplayResult& replay) {
+  json path = json::array();
+  for (const physics::ReplayFrame& frame : replay.frames) {
+    const Eigen::Vector3d p = layout.goalLinkPosition(frame.state.data());
+    path.push_back({p.x(), p.y(), p.z()});
+  }
+  return path;
+}
+
+/// The search tree, positions rounded to 0.1 mm: it is for pictures, and it can be large.
+json treeJson(const planners::SearchTree& tree) {
+  auto round = [](double v) { return std::round(v * 1e4) / 1e4; };
+  json points = json::array();
+  for (const Eigen::Vector3d& p : tree.endEffector)
+    points.push_back({round(p.x()), round(p.y()), round(p.z())});
+  json distances = json::array();
+  for (double d : tree.goalDistance) distances.push_back(round(d));
+  return {{"end_effector", points}, {"parent", tree.parent}, {"goal_distance", distances}};
+}
+
 }  // namespace
 
 json planToJson(const physics::PlanningContext& context, const planners::PlanRequest& request,
                 const planners::PlanOutcome& outcome, const physics::ReplayResult& replay) {
   const WorldLayout& layout = context.layout();
+  const Eigen::Vector3d goal = context.goal().position();
   const double stepSize = context.spaceInformation()->getPropagationStepSize();
   json moved = json::array();
   for (const physics::ObjectDisplacement& m : physics::movedObjects(layout, replay))
@@ -136,6 +159,12 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"bodies", bodiesJson(layout)},
       {"shapes", shapesJson(layout)},
       {"frames", trajectoryJson(layout, replay)},
+      {"goal",
+       {{"position", {goal.x(), goal.y(), goal.z()}},
+        {"tolerance", context.goal().getThreshold()},
+        {"link", context.query().goal.link},
+        {"link_path", linkPathJson(layout, replay)}}},
+      {"tree", treeJson(outcome.tree)},
   };
 }
 

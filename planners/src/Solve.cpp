@@ -53,6 +53,21 @@ ompl::base::PlannerTerminationCondition watcher(const physics::PlanningContext& 
   });
 }
 
+SearchTree treeOf(const ompl::base::PlannerData& data, const physics::PlanningContext& context) {
+  SearchTree tree;
+  const std::size_t count = data.numVertices();
+  tree.parent.assign(count, -1);
+  for (unsigned i = 0; i < count; ++i) {
+    const double* state = physics::WorldStateSpace::values(data.getVertex(i).getState());
+    tree.endEffector.push_back(context.layout().goalLinkPosition(state));
+    tree.goalDistance.push_back(context.goal().distance(state));
+    std::vector<unsigned> children;
+    data.getEdges(i, children);
+    for (unsigned child : children) tree.parent[child] = static_cast<int>(i);
+  }
+  return tree;
+}
+
 }  // namespace
 
 std::uint32_t seedRandomness(std::uint32_t seed) {
@@ -89,6 +104,7 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
   ompl::base::PlannerData data(context.spaceInformation());
   planner->getPlannerData(data);
   outcome.statistics.treeStates = data.numVertices();
+  outcome.tree = treeOf(data, context);
 
   const auto& pdef = context.problemDefinition();
   if (pdef->hasSolution()) {

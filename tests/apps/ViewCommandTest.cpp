@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "TestPaths.h"
 
@@ -210,6 +211,47 @@ TEST_F(ViewCommandTest, MalformedPlansExitTwoNamingTheFile) {
                                  "pose": [0, 0, 0, 1, 0, 0, 0]}],
                      "frames": [{"t": 0, "poses": [[0, 0, 0, 1, 0, 0, 0]]}]})",
                  "one pose per body");
+}
+
+TEST_F(ViewCommandTest, TreePictureDrawsEveryTreeStateAndTheGoal) {
+  const fs::path planFile = folder / "plan.json";
+  const fs::path svgFile = folder / "tree.svg";
+  ASSERT_EQ(
+      kautham("plan problems/pusher_cans_5.xml --seed 1 -o '" + planFile.string() + "'").exitCode,
+      0);
+  const CommandRun view =
+      kautham("view '" + planFile.string() + "' --tree '" + svgFile.string() + "'");
+  ASSERT_EQ(view.exitCode, 0) << view.output;
+  EXPECT_FALSE(fs::exists(folder / "plan.html"));  // only the picture was asked for
+
+  const nlohmann::json plan = nlohmann::json::parse(std::ifstream(planFile));
+  const std::size_t states = plan["statistics"]["tree_states"];
+  ASSERT_EQ(plan["tree"]["end_effector"].size(), states);
+  std::size_t roots = 0;
+  for (const auto& parent : plan["tree"]["parent"]) roots += parent.get<int>() < 0;
+  EXPECT_EQ(roots, 1u);  // one tree, grown from the start
+
+  std::ifstream in(svgFile);
+  const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::size_t lines = 0;
+  for (std::size_t at = svg.find("<line"); at != std::string::npos; at = svg.find("<line", at + 1))
+    ++lines;
+  EXPECT_EQ(lines, states - roots);                            // one edge per state but the root
+  EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos);  // the goal region
+  EXPECT_NE(svg.find("<polyline"), std::string::npos);         // the plan's path
+}
+
+TEST_F(ViewCommandTest, TreePictureOfAPlanWithoutTreeExitsTwo) {
+  const fs::path planFile = folder / "plan.json";
+  ASSERT_EQ(
+      kautham("plan problems/pusher_free.xml --seed 1 -o '" + planFile.string() + "'").exitCode, 0);
+  nlohmann::json plan = nlohmann::json::parse(std::ifstream(planFile));
+  plan.erase("tree");
+  writeFile(planFile, plan.dump());
+  const CommandRun view =
+      kautham("view '" + planFile.string() + "' --tree '" + (folder / "t.svg").string() + "'");
+  EXPECT_EQ(view.exitCode, 2) << view.output;
+  EXPECT_NE(view.output.find("no search tree"), std::string::npos) << view.output;
 }
 
 TEST_F(ViewCommandTest, MissingPlanOrThreeJsExitsTwo) {

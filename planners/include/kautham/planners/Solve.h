@@ -29,12 +29,20 @@ struct PlanStatistics {
   std::uint64_t physicsSteps = 0;
 };
 
+/// The planner's tree as the end effector saw it: where each state put the goal link.
+struct SearchTree {
+  std::vector<Eigen::Vector3d> endEffector;  ///< one per tree state
+  std::vector<int> parent;                   ///< index of the parent state, -1 for roots
+  std::vector<double> goalDistance;          ///< metres from the goal region's centre
+};
+
 struct PlanOutcome {
   bool solved = false;  ///< an exact solution: the goal region was reached
   bool approximate = false;
   double goalDistance = 0.0;
   std::vector<physics::ControlStep> controls;
   PlanStatistics statistics;
+  SearchTree tree;
 };
 
 /// Seeds every random number generator the planners use (OMPL's), before anything samples.
