@@ -40,7 +40,7 @@ json trajectoryJson(const WorldLayout& layout, const physics::ReplayResult& repl
     json poses = json::array();
     for (std::size_t b = 0; b < layout.bodies.size(); ++b)
       poses.push_back(poseArray(frame.state.data(), b));
-    frames.push_back({{"t", frame.time}, {"poses", poses}});
+    frames.push_back({{"t", frame.time}, {"poses", poses}, {"touched", frame.touched}});
   }
   return frames;
 }

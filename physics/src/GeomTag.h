@@ -19,6 +19,7 @@ enum CollisionCategory : unsigned long {
 struct GeomTag {
   enum class Kind { RobotLink, RobotBase, Fixed, Movable, Target } kind;
   std::string name;  ///< the object's name, or robot/link
+  int body = -1;     ///< index into WorldLayout::bodies; -1 for static geometry
 
   bool isRobot() const { return kind == Kind::RobotLink || kind == Kind::RobotBase; }
   unsigned long category() const;

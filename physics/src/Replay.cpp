@@ -4,7 +4,7 @@
 
 namespace kautham::physics {
 
-ReplayResult replay(const PlanningContext& context, const std::vector<ControlStep>& controls) {
+ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& controls) {
   const auto& si = context.spaceInformation();
   const double stepSize = si->getPropagationStepSize();
   ompl::base::State* current = si->allocState();
@@ -16,17 +16,18 @@ ReplayResult replay(const PlanningContext& context, const std::vector<ControlSte
   auto* velocities = control->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
 
   ReplayResult result;
-  result.frames.push_back({0.0, context.startState(), Violation::None});
+  result.frames.push_back({0.0, context.startState(), Violation::None, {}});
   double time = 0.0;
   for (const ControlStep& step : controls) {
     std::copy(step.velocities.begin(), step.velocities.end(), velocities);
     for (unsigned i = 0; i < step.steps && result.firstViolation == Violation::None; ++i) {
+      context.world().takeTouchedBodies();
       context.propagator().propagate(current, control, stepSize, next);
       si->copyState(current, next);
       time += stepSize;
       const Violation violation = context.validityChecker().check(values);
-      result.frames.push_back(
-          {time, std::vector<double>(values, values + si->getStateDimension()), violation});
+      result.frames.push_back({time, std::vector<double>(values, values + si->getStateDimension()),
+                               violation, context.world().takeTouchedBodies()});
       result.firstViolation = violation;
     }
   }

@@ -91,6 +91,14 @@ void World::step() {
   if (diverged()) events_ |= kSimulationDiverged;
 }
 
+std::vector<int> World::takeTouchedBodies() {
+  std::vector<int> touched;
+  for (std::size_t b = 0; b < touched_.size(); ++b)
+    if (touched_[b]) touched.push_back(static_cast<int>(b));
+  std::fill(touched_.begin(), touched_.end(), 0);
+  return touched;
+}
+
 std::vector<Overlap> World::probeContacts(double depth) {
   std::vector<Overlap> overlaps;
   overlaps_ = &overlaps;
@@ -123,6 +131,10 @@ void World::collide(dGeomID a, dGeomID b) {
       dCollide(a, b, settings_.maxContacts, &contactBuffer_[0].geom, sizeof(dContact));
   if (count == 0) return;
   events_ |= contactEvent(tagA, tagB);
+  if (tagA.isRobot() != tagB.isRobot()) {
+    const GeomTag& other = tagA.isRobot() ? tagB : tagA;
+    if (other.body >= 0) touched_[static_cast<std::size_t>(other.body)] = 1;
+  }
   if (overlaps_) recordOverlap(tagA, tagB, count);
   for (int i = 0; i < count; ++i) {
     dContact& contact = contactBuffer_[i];

@@ -128,6 +128,7 @@ class World::Builder {
     buildRobot(query);
     for (std::size_t i = 0; i < problem_.objects.size(); ++i) buildObject(static_cast<int>(i));
     world_.contactBuffer_.resize(static_cast<std::size_t>(problem_.physics.maxContacts));
+    world_.touched_.assign(world_.bodies_.size(), 0);
   }
 
  private:
@@ -146,7 +147,8 @@ class World::Builder {
 
   void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top, GeomTag::Kind kind,
                 dBodyID body, const Eigen::Isometry3d& topInWorldOrBody, const std::string& name) {
-    world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind, name}));
+    const int bodyIndex = body ? static_cast<int>(world_.bodies_.size()) : -1;
+    world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind, name, bodyIndex}));
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
       for (const core::CollisionShape& collision : model.links[link].collisions) {
@@ -156,7 +158,6 @@ class World::Builder {
         dGeomSetCategoryBits(geom, tag->category());
         dGeomSetCollideBits(geom, tag->collidesWith());
         const Eigen::Isometry3d pose = topInWorldOrBody * groups.inGroup[link] * collision.origin;
-        const int bodyIndex = body ? static_cast<int>(world_.bodies_.size()) : -1;
         world_.layout_.shapes.push_back({collision.shape, bodyIndex, pose, name, roleName(kind)});
         dMatrix3 rotation;
         toOdeRotation(pose.linear(), rotation);

@@ -67,7 +67,13 @@ TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
   // One pose per body per frame, frames one propagation step apart.
   const std::size_t bodies = plan["bodies"].size();
   EXPECT_EQ(bodies, 9u);
-  for (const auto& frame : plan["frames"]) EXPECT_EQ(frame["poses"].size(), bodies);
+  std::size_t framesWithContact = 0;
+  for (const auto& frame : plan["frames"]) {
+    EXPECT_EQ(frame["poses"].size(), bodies);
+    framesWithContact += !frame["touched"].empty();
+    for (const auto& b : frame["touched"]) EXPECT_NE(plan["bodies"][b.get<int>()]["role"], "robot");
+  }
+  EXPECT_GT(framesWithContact, 0u);  // it pushed
   EXPECT_GT(plan["statistics"]["physics_steps"].get<long>(), 0);
   // Every collision shape, for viewers: 3 gripper boxes, the table, the glass, 5 cans.
   EXPECT_EQ(plan["shapes"].size(), 10u);

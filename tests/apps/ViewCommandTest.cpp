@@ -164,12 +164,14 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   const std::string verdict = title[1];
   ASSERT_TRUE(std::regex_match(
       verdict, pass,
-      std::regex("SELFTEST PASS bodies=(\\d+) shapes=(\\d+) moved=(\\S+):([0-9.]+)")))
+      std::regex(
+          "SELFTEST PASS bodies=(\\d+) shapes=(\\d+) moved=(\\S+):([0-9.]+) contacts=(\\d+)")))
       << verdict;
   EXPECT_EQ(pass[1], "9");
   EXPECT_EQ(pass[2], "10");
   EXPECT_EQ(pass[3].str().rfind("can", 0), 0u) << verdict;  // a pushed can
   EXPECT_GT(std::stod(pass[4]), 0.01) << verdict;
+  EXPECT_GT(std::stoi(pass[5]), 0) << verdict;  // contact moments marked on the timeline
 
   const fs::path screenshot = folder / "plan.png";
   const CommandRun shot =

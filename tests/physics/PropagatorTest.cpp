@@ -1,6 +1,8 @@
 // The propagator is a function of (state, control, duration): the property every planner and
 // every replay relies on.
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "kautham/physics/Replay.h"
@@ -71,6 +73,24 @@ TEST(ReplayTest, ReplayingControlsTwiceGivesTheSameFrames) {
     EXPECT_EQ(first.frames[i].state, second.frames[i].state) << "frame " << i;
   EXPECT_FALSE(first.reachedGoal);
   EXPECT_NEAR(first.frames.back().time, 0.8, 1e-9);
+}
+
+TEST(ReplayTest, FramesRecordWhatTheRobotTouched) {
+  ContextFixture scene("tests/data/pusher_wall.xml");
+  const int can = static_cast<int>(scene.body("can1"));
+  // Over to the can (x = 0.35), then forward into it.
+  const ReplayResult result =
+      replay(scene.context, {{{0.25, 0.0, 0.0}, 28}, {{0.0, 0.2, 0.0}, 16}});
+  ASSERT_EQ(result.firstViolation, Violation::None);
+  std::size_t touching = 0;
+  for (std::size_t f = 0; f < result.frames.size(); ++f) {
+    const auto& touched = result.frames[f].touched;
+    if (f <= 28) {
+      EXPECT_TRUE(touched.empty()) << "frame " << f;  // moving in free space
+    }
+    touching += std::count(touched.begin(), touched.end(), can);
+  }
+  EXPECT_GT(touching, 0u);
 }
 
 TEST(ReplayTest, ReplayStopsAtTheFirstViolation) {

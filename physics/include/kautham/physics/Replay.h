@@ -19,6 +19,7 @@ struct ReplayFrame {
   double time = 0.0;
   std::vector<double> state;
   Violation violation = Violation::None;
+  std::vector<int> touched;  ///< bodies the robot touched during the step to this frame
 };
 
 struct ReplayResult {
@@ -42,6 +43,6 @@ std::vector<ObjectDisplacement> movedObjects(const WorldLayout& layout, const Re
 
 /// Re-propagates a plan's controls from the context's start state, one propagation step at
 /// a time as the planners do, and stops at the first invalid state.
-ReplayResult replay(const PlanningContext& context, const std::vector<ControlStep>& controls);
+ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& controls);
 
 }  // namespace kautham::physics

@@ -64,6 +64,10 @@ class World {
   /// Events (ContactEvent flags) recorded since the last call, which clears them.
   unsigned takeEvents();
 
+  /// Bodies the robot touched since the last call (indices into layout().bodies, robot bodies
+  /// excluded), which clears the record.
+  std::vector<int> takeTouchedBodies();
+
   /// Contact parameters used for every new contact (sampled per particle in later planners).
   void setContactParameters(double friction, double erp, double cfm);
 
@@ -90,6 +94,7 @@ class World {
   std::vector<std::unique_ptr<GeomTag>> tags_;
   std::vector<dContact> contactBuffer_;
   unsigned events_ = kNoEvent;
+  std::vector<char> touched_;  ///< per body: touched by the robot since takeTouchedBodies()
   std::vector<Overlap>* overlaps_ = nullptr;  ///< set while probeContacts runs
   double overlapDepth_ = 0.0;
 };
