@@ -12,6 +12,7 @@
 #include "Commands.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
+#include "StartCheck.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -89,29 +90,6 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
   fmt::print("moved    {}\n", moved.empty() ? " nothing" : moved);
 }
 
-/// The planning context, or InputError when the problem's start is no valid world.
-std::unique_ptr<physics::PlanningContext> makeContext(const core::Problem& problem,
-                                                      std::size_t query,
-                                                      const planners::PlanRequest& request) {
-  std::unique_ptr<physics::PlanningContext> context;
-  try {
-    context = std::make_unique<physics::PlanningContext>(problem, query, request.propagation());
-  } catch (const std::invalid_argument& e) {  // propagation settings that do not fit the physics
-    throw core::InputError(problem.planner.where, e.what());
-  }
-  const core::SourceLocation& where = problem.queries[query].where;
-  if (!context->startOverlaps().empty()) {
-    std::string pairs;
-    for (const physics::Overlap& o : context->startOverlaps())
-      pairs += fmt::format("\n  {} and {} ({:.1f} mm)", o.first, o.second, 1000.0 * o.depth);
-    throw core::InputError(where, "at the start, these interpenetrate; move them apart:" + pairs);
-  }
-  if (context->startViolation() != physics::Violation::None)
-    throw core::InputError(where, std::string("the start state is invalid: ") +
-                                      physics::toString(context->startViolation()));
-  return context;
-}
-
 int runPlan(const PlanOptions& options) {
   // Before planning, so that a missing three.js does not cost the planning time.
   const std::filesystem::path threeDir =
@@ -124,7 +102,7 @@ int runPlan(const PlanOptions& options) {
   const planners::PlanRequest request = planners::makeRequest(
       problem, options.planner, parseOverrides(options), planners::seedRandomness(options.seed));
 
-  const auto contextOwner = makeContext(problem, options.query, request);
+  const auto contextOwner = makeCheckedContext(problem, options.query, request);
   physics::PlanningContext& context = *contextOwner;
 
   std::signal(SIGINT, [](int) { interrupted = true; });

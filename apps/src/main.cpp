@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
 
   int exitCode = kautham::apps::kExitSolved;
   kautham::apps::addPlanCommand(app, exitCode);
+  kautham::apps::addCheckCommand(app, exitCode);
   kautham::apps::addPlannersCommand(app, exitCode);
   kautham::apps::addViewCommand(app, exitCode);
   try {

@@ -139,6 +139,24 @@ TEST_F(PlanCommandTest, PlannersListsEveryPlannerWithItsParameters) {
     EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
 }
 
+TEST_F(PlanCommandTest, CheckSummarisesAValidProblem) {
+  const CommandRun run = kautham("check problems/pusher_cans_5.xml");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  for (const char* text : {"3 degrees of freedom", "movable: can1, can2, can3, can4, can5",
+                           "target: glass", "start valid", "ok"})
+    EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
+}
+
+TEST_F(PlanCommandTest, CheckRejectsBadProblemsWithExitTwo) {
+  const CommandRun overlap = kautham("check tests/data/overlap_can_in_glass.xml");
+  EXPECT_EQ(overlap.exitCode, 2) << overlap.output;
+  EXPECT_NE(overlap.output.find("interpenetrate"), std::string::npos) << overlap.output;
+  const CommandRun malformed =
+      kautham("check tests/data/malformed/home_nan.xml --model-dir models");
+  EXPECT_EQ(malformed.exitCode, 2) << malformed.output;
+  EXPECT_NE(malformed.output.find("home_nan.xml:"), std::string::npos) << malformed.output;
+}
+
 TEST_F(PlanCommandTest, HelpExplainsThePlanCommand) {
   const CommandRun run = kautham("plan --help");
   EXPECT_EQ(run.exitCode, 0);

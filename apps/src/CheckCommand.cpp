@@ -1,0 +1,124 @@
+// `kautham check PROBLEM`: load and validate a problem, and summarise it, without planning.
+
+#include <map>
+
+#include <fmt/format.h>
+
+#include "Commands.h"
+#include "StartCheck.h"
+#include "kautham/core/ProblemLoader.h"
+
+namespace kautham::apps {
+
+namespace {
+
+struct CheckOptions {
+  std::string problem;
+  std::vector<std::string> modelDirs;
+};
+
+const char* jointTypeName(core::JointType type) {
+  switch (type) {
+    case core::JointType::Revolute:
+      return "revolute";
+    case core::JointType::Continuous:
+      return "continuous";
+    case core::JointType::Prismatic:
+      return "prismatic";
+    case core::JointType::Fixed:
+      return "fixed";
+  }
+  return "?";
+}
+
+void printRobot(const core::RobotInstance& robot) {
+  const std::vector<int> joints = robot.model.movableJoints();
+  fmt::print("robot       {} ({}), {} degrees of freedom:\n", robot.name,
+             robot.urdf.filename().string(), joints.size());
+  for (int j : joints) {
+    const core::Joint& joint = robot.model.joints[j];
+    const bool prismatic = joint.type == core::JointType::Prismatic;
+    fmt::print("              {:<12} {:<10} [{:g}, {:g}] {}, up to {:g} {}, effort {:g} {}\n",
+               joint.name, jointTypeName(joint.type), joint.lower, joint.upper,
+               prismatic ? "m" : "rad", joint.maxVelocity, prismatic ? "m/s" : "rad/s",
+               joint.maxEffort, prismatic ? "N" : "N m");
+  }
+}
+
+void printObjects(const core::Problem& problem) {
+  std::map<core::ObjectRole, std::vector<std::string>> byRole;
+  for (const core::ObjectInstance& object : problem.objects)
+    byRole[object.role].push_back(object.name);
+  for (auto role : {core::ObjectRole::Fixed, core::ObjectRole::Movable, core::ObjectRole::Target})
+    fmt::print("{:<12}{}: {}\n", role == core::ObjectRole::Fixed ? "objects" : "",
+               core::toString(role), fmt::join(byRole[role], ", "));
+  std::vector<std::string> uncertain;
+  for (const core::ObjectInstance& o : problem.objects)
+    if (o.uncertainty.x > 0 || o.uncertainty.y > 0 || o.uncertainty.yaw > 0)
+      uncertain.push_back(fmt::format("{} (x {:g} m, y {:g} m, yaw {:g} rad)", o.name,
+                                      o.uncertainty.x, o.uncertainty.y, o.uncertainty.yaw));
+  fmt::print("uncertainty {}\n",
+             uncertain.empty() ? "none" : fmt::format("{}", fmt::join(uncertain, ", ")));
+}
+
+void printSettings(const core::Problem& problem) {
+  const core::PhysicsSettings& p = problem.physics;
+  fmt::print(
+      "physics     step {:g} s, {} solver iterations, mu {:g}, ERP {:g}, CFM {:g}, {} contacts "
+      "per pair\n",
+      p.stepSize, p.solverIterations, p.friction, p.erp, p.cfm, p.maxContacts);
+  const core::InteractionConstraints& c = problem.interaction;
+  const auto support = problem.supportObject();
+  fmt::print(
+      "constraints objects slower than {:g} m/s, tilted less than {:g} rad, on {}; target "
+      "drifts less than {:g} m\n",
+      c.maxObjectSpeed, c.maxTilt,
+      support ? problem.objects[*support].name : std::string("any surface"), c.targetTolerance);
+  const Eigen::AlignedBox3d& w = problem.workspace;
+  fmt::print("workspace   x [{:g}, {:g}]  y [{:g}, {:g}]  z [{:g}, {:g}] m\n", w.min().x(),
+             w.max().x(), w.min().y(), w.max().y(), w.min().z(), w.max().z());
+}
+
+int runCheck(const CheckOptions& options) {
+  std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
+  const core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  const planners::PlanRequest request = planners::makeRequest(problem, std::nullopt, {}, 1);
+  fmt::print("problem     {} ({})\n", problem.name, problem.file.string());
+  printRobot(problem.robot);
+  printObjects(problem);
+  printSettings(problem);
+  fmt::print("planner     {}\n", request.planner);
+  for (std::size_t q = 0; q < problem.queries.size(); ++q) {
+    const auto context = makeCheckedContext(problem, q, request);  // throws if the start is bad
+    const double* start = context->startState().data();
+    const Eigen::Vector3d goal = context->goal().position();
+    fmt::print(
+        "query       {}: start valid; goal: {} within {:g} m of ({:g}, {:g}, {:g}), "
+        "{:.1f} cm from the start\n",
+        problem.queries[q].name, problem.queries[q].goal.link, context->goal().getThreshold(),
+        goal.x(), goal.y(), goal.z(), 100.0 * context->goal().distance(start));
+  }
+  fmt::print("ok\n");
+  return kExitSolved;
+}
+
+}  // namespace
+
+void addCheckCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<CheckOptions>();
+  CLI::App* command =
+      app.add_subcommand("check", "Load and validate a problem file and summarise it");
+  command->add_option("problem", options->problem, "problem file (XML)")->required();
+  command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->allow_extra_args(false);
+  command->callback([options, &exitCode] {
+    try {
+      exitCode = runCheck(*options);
+    } catch (const std::exception& e) {  // InputError and bad planner parameters alike
+      fmt::print(stderr, "error: {}\n", e.what());
+      exitCode = kExitBadInput;
+    }
+  });
+}
+
+}  // namespace kautham::apps
