@@ -4,7 +4,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake pkg-config ninja-build clang-format
+  build-essential cmake pkg-config ninja-build clang-format clang libclang-rt-14-dev
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libode-dev libeigen3-dev liburdfdom-dev liburdfdom-headers-dev
   libassimp-dev libtinyxml2-dev liboctomap-dev
