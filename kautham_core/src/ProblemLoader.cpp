@@ -331,6 +331,10 @@ class ProblemReader {
     if (!target)
       xml_.fail(root, "the problem needs exactly one <Obstacle role=\"target\">, found none");
     for (const ObjectInstance& object : problem_.objects) {
+      // A fixed object's joints would be frozen at zero; a moving one's would be dropped.
+      if (!object.model.movableJoints().empty())
+        throw InputError(object.where,
+                         "object '" + object.name + "' has movable joints; objects must be rigid");
       if (object.role == ObjectRole::Fixed) continue;
       double mass = 0.0;
       for (const Link& link : object.model.links) mass += link.inertial.mass;
@@ -338,9 +342,6 @@ class ProblemReader {
         throw InputError(object.where, "the " + std::string(toString(object.role)) + " object '" +
                                            object.name +
                                            "' has no mass: give its URDF links an <inertial>");
-      if (!object.model.movableJoints().empty())
-        throw InputError(object.where,
-                         "object '" + object.name + "' has movable joints; objects must be rigid");
     }
   }
 

@@ -432,6 +432,7 @@ const MalformedCase kMalformedCases[] = {
     {"missing_model", nullptr, 7, "model file 'objects/no_such_table.urdf' not found"},
     {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML"},
     {"urdf_mesh", "mesh.urdf", 4, "mesh collision geometry is not supported"},
+    {"fixed_with_joint", nullptr, 11, "object 'cabinet' has movable joints"},
     {"goal_unknown_link", nullptr, 25, "has no link 'hand'"},
     {"goal_unknown_object", nullptr, 25, "relativeTo names no object: 'cup'"},
     {"goal_outside_workspace", nullptr, 25, "lies outside the <Workspace>"},
