@@ -58,6 +58,7 @@ class ProblemReader {
     xml_.allowAttributes(root, {"name"});
     problem_.file = xml_.file();
     problem_.name = xml_.optionalText(root, "name").value_or(xml_.file().stem().string());
+    xml_.atMostOnce(root, {"Physics", "Interaction", "Workspace"});
     for (const XMLElement* e = root.FirstChildElement(); e; e = e->NextSiblingElement())
       readTopLevel(*e);
     if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
@@ -118,6 +119,7 @@ class ProblemReader {
 
   void readModel(const XMLElement& e, const char* fileAttribute, ModelInstance& instance) {
     const std::string relative = xml_.requiredText(e, fileAttribute);
+    xml_.atMostOnce(e, {"Home", "KauthamName", "Uncertainty"});
     instance.where = xml_.at(e);
     instance.urdf = findModel(e, relative);
     instance.model = loadUrdf(instance.urdf, xml_.number(e, "scale", 1.0), instance.where);
@@ -141,6 +143,8 @@ class ProblemReader {
     if (robotElement_) xml_.fail(e, "only one <Robot> is supported per problem");
     robotElement_ = &e;
     xml_.allowAttributes(e, {"robot", "scale", "name"});
+    if (const XMLElement* u = e.FirstChildElement("Uncertainty"))
+      xml_.fail(*u, "<Uncertainty> is for objects' poses; a <Robot> has none");
     readModel(e, "robot", problem_.robot);
     const KinematicModel& model = problem_.robot.model;
     for (int j : model.movableJoints())
@@ -229,6 +233,7 @@ class ProblemReader {
 
   void readPlanner(const XMLElement& e) {
     xml_.allowChildren(e, {"Parameters", "Queries"});
+    xml_.atMostOnce(e, {"Parameters", "Queries"});
     problem_.planner.where = xml_.at(e);
     const XMLElement* parameters = e.FirstChildElement("Parameters");
     if (!parameters) xml_.fail(e, "<Planner> needs a <Parameters> block with a <Name>");
@@ -242,6 +247,7 @@ class ProblemReader {
 
   void readParameters(const XMLElement& parameters) {
     xml_.allowChildren(parameters, {"Name", "Parameter"});
+    xml_.atMostOnce(parameters, {"Name"});
     const XMLElement* name = parameters.FirstChildElement("Name");
     if (!name || xml_.elementText(*name).empty())
       xml_.fail(parameters, "<Parameters> needs <Name>PlannerName</Name>");
@@ -260,6 +266,7 @@ class ProblemReader {
       xml_.fail(q, std::string("unexpected <") + q.Name() + "> inside <Queries>; expected <Query>");
     xml_.allowAttributes(q, {"name"});
     xml_.allowChildren(q, {"Init", "Goal", "GoalRegion"});
+    xml_.atMostOnce(q, {"Init", "GoalRegion"});
     Query query;
     query.where = xml_.at(q);
     query.name =

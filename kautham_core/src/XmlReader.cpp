@@ -51,6 +51,16 @@ void XmlReader::allowAttributes(const tinyxml2::XMLElement& element,
   }
 }
 
+void XmlReader::atMostOnce(const tinyxml2::XMLElement& element,
+                           std::initializer_list<const char*> tags) const {
+  for (const char* tag : tags) {
+    const tinyxml2::XMLElement* first = element.FirstChildElement(tag);
+    if (const tinyxml2::XMLElement* second = first ? first->NextSiblingElement(tag) : nullptr)
+      fail(*second, std::string("<") + tag + "> appears twice inside <" + element.Name() +
+                        "> (first on line " + std::to_string(first->GetLineNum()) + "); keep one");
+  }
+}
+
 void XmlReader::allowChildren(const tinyxml2::XMLElement& element,
                               std::initializer_list<const char*> allowed) const {
   for (const tinyxml2::XMLElement* c = element.FirstChildElement(); c;

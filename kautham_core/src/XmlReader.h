@@ -30,6 +30,9 @@ class XmlReader {
   /// Rejects attributes other than `allowed` (catches typos such as maxTilts="...").
   void allowAttributes(const tinyxml2::XMLElement& element,
                        std::initializer_list<const char*> allowed) const;
+  /// Rejects a second child named like one of `tags` (a second <Home> would silently win).
+  void atMostOnce(const tinyxml2::XMLElement& element,
+                  std::initializer_list<const char*> tags) const;
   /// Rejects child elements other than `allowed` (catches typos such as <Paramter>).
   void allowChildren(const tinyxml2::XMLElement& element,
                      std::initializer_list<const char*> allowed) const;

@@ -424,6 +424,7 @@ const MalformedCase kMalformedCases[] = {
     {"query_unknown_element", nullptr, 24, "unexpected <Inti> inside <Query>"},
     {"unknown_attribute", nullptr, 16, "no attribute 'maxDisplacment'; allowed:"},
     {"home_nan", nullptr, 13, "expected a finite number, got 'nan'"},
+    {"home_twice", nullptr, 14, "<Home> appears twice inside <Obstacle> (first on line 13)"},
     {"physics_not_a_number", nullptr, 15, "friction: expected a number, got 'high'"},
     {"physics_out_of_range", nullptr, 15, "maxContacts must be in [1, 64]"},
     {"kautham_max_contacts_out_of_range", nullptr, 21,
