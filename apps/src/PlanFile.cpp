@@ -17,18 +17,6 @@ namespace {
 using nlohmann::json;
 using physics::WorldLayout;
 
-const char* roleName(physics::BodyRole role) {
-  switch (role) {
-    case physics::BodyRole::Robot:
-      return "robot";
-    case physics::BodyRole::Movable:
-      return "movable";
-    case physics::BodyRole::Target:
-      return "target";
-  }
-  return "?";
-}
-
 json poseArray(const double* state, std::size_t body) {
   const double* s = state + body * WorldLayout::kBodyStateSize;
   return json::array({s[0], s[1], s[2], s[3], s[4], s[5], s[6]});
@@ -56,7 +44,7 @@ json controlsJson(const planners::PlanOutcome& outcome, double stepSize) {
 json bodiesJson(const WorldLayout& layout) {
   json bodies = json::array();
   for (const physics::BodyInfo& b : layout.bodies)
-    bodies.push_back({{"name", b.name}, {"role", roleName(b.role)}});
+    bodies.push_back({{"name", b.name}, {"role", physics::toString(b.role)}});
   return bodies;
 }
 

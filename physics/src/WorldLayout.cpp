@@ -2,6 +2,18 @@
 
 namespace kautham::physics {
 
+const char* toString(BodyRole role) {
+  switch (role) {
+    case BodyRole::Robot:
+      return "robot";
+    case BodyRole::Movable:
+      return "movable";
+    case BodyRole::Target:
+      return "target";
+  }
+  return "?";
+}
+
 Eigen::Vector3d WorldLayout::position(const double* state, std::size_t body) {
   const double* p = state + body * kBodyStateSize + kPosition;
   return {p[0], p[1], p[2]};

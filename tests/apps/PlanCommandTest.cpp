@@ -1,8 +1,5 @@
 // The `kautham` program as a user runs it: exit codes, messages, the plan file.
 
-#include <sys/wait.h>
-
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
@@ -10,43 +7,22 @@
 #include <nlohmann/json.hpp>
 
 #include "TestPaths.h"
+#include "apps/CommandTestSupport.h"
 
 namespace kautham::apps {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int exitCode = -1;
-  std::string output;  ///< stdout and stderr together
-};
-
-CommandRun kautham(const std::string& arguments) {
-  const std::string command = "cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY +
-                              "' " + arguments + " 2>&1";
-  CommandRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
-  const int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using test::CommandRun;
+using test::kautham;
 
 nlohmann::json readJson(const fs::path& file) {
   std::ifstream in(file);
   return nlohmann::json::parse(in);
 }
 
-class PlanCommandTest : public ::testing::Test {
- protected:
-  fs::path folder =
-      fs::temp_directory_path() /
-      ("kautham_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  void SetUp() override { fs::create_directories(folder); }
-  void TearDown() override { fs::remove_all(folder); }
-};
+using PlanCommandTest = test::TemporaryFolderTest;
 
 TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
   const fs::path planFile = folder / "plan.json";

@@ -15,44 +15,18 @@
 #include <nlohmann/json.hpp>
 
 #include "TestPaths.h"
+#include "apps/CommandTestSupport.h"
 
 namespace kautham::apps {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int exitCode = -1;
-  std::string output;  ///< stdout and stderr together, or stdout only (see run)
-};
-
-CommandRun run(const std::string& command) {
-  CommandRun result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) result.output.append(buffer, n);
-  const int status = pclose(pipe);
-  result.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-CommandRun kautham(const std::string& arguments) {
-  return run("cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY + "' " +
-             arguments + " 2>&1");
-}
-
-std::string readFile(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void writeFile(const fs::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-}
+using test::CommandRun;
+using test::kautham;
+using test::readFile;
+using test::run;
+using test::writeFile;
 
 /// Debian's Chromium, or "" when it is not installed.
 std::string findChromium() {
@@ -119,15 +93,8 @@ std::string externalUrls(const std::string& page) {
   return found;
 }
 
-class ViewCommandTest : public ::testing::Test {
+class ViewCommandTest : public test::TemporaryFolderTest {
  protected:
-  fs::path folder =
-      fs::temp_directory_path() /
-      ("kautham_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-       ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  void SetUp() override { fs::create_directories(folder); }
-  void TearDown() override { fs::remove_all(folder); }
-
   /// `kautham view` on a plan file holding `text`: expects exit 2, a message naming the file
   /// and containing `expected`, and no page written.
   void expectRejected(const std::string& text, const std::string& expected) {

@@ -12,6 +12,7 @@ namespace kautham::physics {
 
 /// What a dynamic body stands for.
 enum class BodyRole { Robot, Movable, Target };
+const char* toString(BodyRole role);  ///< "robot", "movable" or "target"
 
 /// One dynamic body of the world: a robot link (with the links fixed to it) or an object.
 struct BodyInfo {
