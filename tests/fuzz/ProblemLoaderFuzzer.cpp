@@ -2,11 +2,11 @@
 // Anything else (a crash, a sanitizer report, another exception) is a bug the fuzzer reports.
 // Build and run with scripts/fuzz.sh.
 
+#include <unistd.h>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 #include "kautham/core/InputError.h"
 #include "kautham/core/ProblemLoader.h"
@@ -16,8 +16,8 @@ namespace {
 /// One scratch folder per process, beside which the repository's models are searched.
 const std::filesystem::path& scratchFile() {
   static const std::filesystem::path file = [] {
-    const auto folder = std::filesystem::temp_directory_path() /
-                        ("kautham_fuzz_" + std::to_string(::getpid()));
+    const auto folder =
+        std::filesystem::temp_directory_path() / ("kautham_fuzz_" + std::to_string(::getpid()));
     std::filesystem::create_directories(folder);
     return folder / "problem.xml";
   }();
@@ -32,7 +32,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   }
   try {
-    kautham::core::loadProblem(scratchFile(), {std::filesystem::path(KAUTHAM_SOURCE_DIR) / "models"});
+    kautham::core::loadProblem(scratchFile(),
+                               {std::filesystem::path(KAUTHAM_SOURCE_DIR) / "models"});
   } catch (const kautham::core::InputError&) {
     // The expected answer to bad input.
   }
