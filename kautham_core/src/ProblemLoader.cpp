@@ -122,7 +122,7 @@ class ProblemReader {
     xml_.atMostOnce(e, {"Home", "KauthamName", "Uncertainty"});
     instance.where = xml_.at(e);
     instance.urdf = findModel(e, relative);
-    instance.model = loadUrdf(instance.urdf, xml_.number(e, "scale", 1.0), instance.where);
+    instance.model = loadModel(instance.urdf, xml_.number(e, "scale", 1.0), instance.where);
     instance.home = readHome(e);
     instance.name = xml_.optionalText(e, "name").value_or(instance.model.name);
     if (const XMLElement* rename = e.FirstChildElement("KauthamName"))
@@ -136,6 +136,17 @@ class ProblemReader {
       if (tag != "Home" && tag != "KauthamName" && tag != "Uncertainty")
         xml_.fail(*c, "unexpected <" + tag + "> inside <" + e.Name() +
                           ">; expected Home, KauthamName or Uncertainty");
+    }
+  }
+
+  /// A URDF error names the URDF's line; say which line of the problem asked for it, too.
+  static KinematicModel loadModel(const fs::path& urdf, double scale, const SourceLocation& where) {
+    try {
+      return loadUrdf(urdf, scale, where);
+    } catch (const InputError& e) {
+      if (e.where().file == where.file) throw;
+      throw InputError(e.where(), std::string(e.what()).substr(e.where().str().size() + 2) +
+                                      "\n  (model loaded at " + where.str() + ")");
     }
   }
 

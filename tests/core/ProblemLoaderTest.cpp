@@ -481,6 +481,19 @@ std::string caseName(const ::testing::TestParamInfo<MalformedCase>& param) {
 
 INSTANTIATE_TEST_SUITE_P(Cases, MalformedProblem, ::testing::ValuesIn(kMalformedCases), caseName);
 
+TEST(MalformedProblems, UrdfErrorsAlsoNameTheProblemLineThatLoadedTheModel) {
+  try {
+    loadProblem(malformedFile("urdf_mesh.xml"), {repoFile("models")});
+    FAIL() << "loaded";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("mesh.urdf:4:"), std::string::npos) << message;
+    EXPECT_NE(message.find("(model loaded at " + malformedFile("urdf_mesh.xml").string() + ":7)"),
+              std::string::npos)
+        << message;
+  }
+}
+
 TEST(MalformedProblems, EveryFileInTheFolderHasACase) {
   std::set<std::string> withCase;
   for (const MalformedCase& c : kMalformedCases) withCase.insert(std::string(c.name) + ".xml");
