@@ -27,6 +27,6 @@ OdeLibrary::OdeLibrary() { dInitODE2(0); }
 
 OdeLibrary::~OdeLibrary() { dCloseODE(); }
 
-const char* OdeLibrary::version() { return "0.16.2"; }
+const char* OdeLibrary::version() { return KAUTHAM_ODE_VERSION; }
 
 }  // namespace kautham::physics

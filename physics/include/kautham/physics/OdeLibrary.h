@@ -14,7 +14,7 @@ class OdeLibrary {
   OdeLibrary(const OdeLibrary&) = delete;
   OdeLibrary& operator=(const OdeLibrary&) = delete;
 
-  /// Version of the ODE library in use, e.g. "0.16.2".
+  /// Version of the ODE library the program was built with, e.g. "0.16.2".
   static const char* version();
 
  private:
