@@ -66,14 +66,20 @@ std::optional<int> Problem::supportObject() const {
   return best;
 }
 
-Eigen::AlignedBox3d boundsAtHome(const ModelInstance& instance) {
+std::vector<CollisionShape> shapesAtHome(const ModelInstance& instance) {
   const KinematicModel& model = instance.model;
   const std::vector<Eigen::Isometry3d> poses = model.linkPoses(
       instance.home.isometry(), std::vector<double>(model.movableJoints().size(), 0.0));
-  Eigen::AlignedBox3d box;  // empty
+  std::vector<CollisionShape> shapes;
   for (std::size_t i = 0; i < model.links.size(); ++i)
     for (const CollisionShape& c : model.links[i].collisions)
-      box.extend(boundingBox(c.shape, poses[i] * c.origin));
+      shapes.push_back({c.shape, poses[i] * c.origin});
+  return shapes;
+}
+
+Eigen::AlignedBox3d boundsAtHome(const ModelInstance& instance) {
+  Eigen::AlignedBox3d box;  // empty
+  for (const CollisionShape& c : shapesAtHome(instance)) box.extend(boundingBox(c.shape, c.origin));
   return box;
 }
 

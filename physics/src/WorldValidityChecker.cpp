@@ -1,5 +1,8 @@
 #include "kautham/physics/WorldValidityChecker.h"
 
+#include <cmath>
+#include <variant>
+
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::physics {
@@ -41,11 +44,8 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
       layout_(std::move(layout)),
       limits_(problem.interaction),
       workspace_(problem.workspace) {
-  if (auto support = problem.supportObject()) {
-    const Eigen::AlignedBox3d box = core::boundsAtHome(problem.objects[*support]);
-    hasSupport_ = true;
-    supportArea_ = Eigen::AlignedBox2d(box.min().head<2>(), box.max().head<2>());
-  }
+  if (auto support = problem.supportObject())
+    supportShapes_ = core::shapesAtHome(problem.objects[*support]);
   startHeights_.resize(layout_->bodies.size());
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
     startHeights_[b] = WorldLayout::position(startState, b).z();
@@ -72,6 +72,22 @@ Violation WorldValidityChecker::check(const double* state) const {
   return Violation::None;
 }
 
+bool WorldValidityChecker::onSupport(const Eigen::Vector3d& position) const {
+  for (const core::CollisionShape& shape : supportShapes_) {
+    const Eigen::Vector3d local = shape.origin.inverse() * position;
+    if (const auto* box = std::get_if<core::Box>(&shape.shape)) {
+      if (std::abs(local.x()) <= box->size.x() / 2 && std::abs(local.y()) <= box->size.y() / 2)
+        return true;
+    } else {
+      const double radius = std::holds_alternative<core::Cylinder>(shape.shape)
+                                ? std::get<core::Cylinder>(shape.shape).radius
+                                : std::get<core::Sphere>(shape.shape).radius;
+      if (local.head<2>().norm() <= radius) return true;
+    }
+  }
+  return false;
+}
+
 Violation WorldValidityChecker::checkObject(const double* state, std::size_t body) const {
   if (WorldLayout::linearVelocity(state, body).norm() > limits_.maxObjectSpeed)
     return Violation::ObjectTooFast;
@@ -79,7 +95,7 @@ Violation WorldValidityChecker::checkObject(const double* state, std::size_t bod
     return Violation::ObjectTilted;
   const Eigen::Vector3d p = WorldLayout::position(state, body);
   if (p.z() < startHeights_[body] - kDropTolerance) return Violation::ObjectOffSupport;
-  if (hasSupport_ && !supportArea_.contains(p.head<2>())) return Violation::ObjectOffSupport;
+  if (!supportShapes_.empty() && !onSupport(p)) return Violation::ObjectOffSupport;
   return Violation::None;
 }
 

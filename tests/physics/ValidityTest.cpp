@@ -104,6 +104,22 @@ TEST(ValidityTest, ObjectOffTheTableIsInvalid) {
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::ObjectOffSupport);
 }
 
+TEST(ValidityTest, TheSupportIsTheTableTopEvenWhenTheTableIsTurned) {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_cans_5.xml"));
+  core::ObjectInstance& table = problem.objects.at(*problem.findObject("table"));
+  table.home.orientation = Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d::UnitZ());
+  PlanningContext context(problem, 0, {});
+  std::vector<double> state = context.startState();
+  double* can = state.data() + 4 * WorldLayout::kBodyStateSize;  // a can (bodies 4..8)
+  ASSERT_EQ(context.layout().bodies[4].role, BodyRole::Movable);
+  can[0] = 0.3;  // on the turned 1.2 m x 0.8 m top
+  can[1] = 0.2;
+  EXPECT_EQ(context.validityChecker().check(state.data()), Violation::None);
+  can[0] = 0.55;  // inside the top's bounding box, but off its corner
+  can[1] = 0.35;
+  EXPECT_EQ(context.validityChecker().check(state.data()), Violation::ObjectOffSupport);
+}
+
 TEST(ValidityTest, EndEffectorOutsideTheWorkspaceIsInvalid) {
   ContextFixture scene("problems/pusher_free.xml");
   // The workspace stops at x = 0.45, inside the x joint's reach (0.5): its stops are never

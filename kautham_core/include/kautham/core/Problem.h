@@ -120,6 +120,9 @@ struct Problem {
   std::optional<int> supportObject() const;
 };
 
+/// Every collision shape of a model at its home pose (joints at zero), placed in the world.
+std::vector<CollisionShape> shapesAtHome(const ModelInstance& instance);
+
 /// World-aligned bounding box of an object's collision geometry at its home pose.
 Eigen::AlignedBox3d boundsAtHome(const ModelInstance& instance);
 

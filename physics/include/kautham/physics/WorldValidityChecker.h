@@ -43,8 +43,11 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   std::shared_ptr<const WorldLayout> layout_;
   core::InteractionConstraints limits_;
   Eigen::AlignedBox3d workspace_;
-  bool hasSupport_ = false;
-  Eigen::AlignedBox2d supportArea_;   ///< top face of the support, in x and y
+  bool onSupport(const Eigen::Vector3d& position) const;
+
+  /// The support's shapes seen from above: an object is on the support when its centre is
+  /// over one of them (boxes are rectangles turned with their yaw, the rest discs).
+  std::vector<core::CollisionShape> supportShapes_;
   std::vector<double> startHeights_;  ///< per body: height of its centre at the start
   std::size_t targetBody_ = 0;
   Eigen::Vector3d targetStart_;
