@@ -45,12 +45,7 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   start_.resize(layout_->stateSize());
   world_->readState(start_.data());
 
-  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(1.0);
-  space_ = std::make_shared<WorldStateSpace>(
-      layout_,
-      Eigen::AlignedBox3d(problem_.workspace.min() - margin, problem_.workspace.max() + margin));
-  projection_ = std::make_shared<EndEffectorProjection>(space_.get(), layout_, problem_.workspace);
-  space_->registerDefaultProjection(projection_);
+  space_ = std::make_shared<WorldStateSpace>(layout_, problem_.workspace);
 
   si_ =
       std::make_shared<ompl::control::SpaceInformation>(space_, makeControlSpace(space_, *world_));
@@ -76,6 +71,10 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   std::copy(start_.begin(), start_.end(), WorldStateSpace::values(start.get()));
   pdef_->addStartState(start);
   pdef_->setGoal(goal_);
+}
+
+EndEffectorProjection& PlanningContext::projection() {
+  return static_cast<EndEffectorProjection&>(*space_->getDefaultProjection());
 }
 
 }  // namespace kautham::physics

@@ -1,11 +1,17 @@
 #include "kautham/physics/WorldStateSpace.h"
 
+#include "kautham/physics/EndEffectorProjection.h"
+
 namespace kautham::physics {
 
 WorldStateSpace::WorldStateSpace(std::shared_ptr<const WorldLayout> layout,
-                                 const Eigen::AlignedBox3d& region)
-    : RealVectorStateSpace(static_cast<unsigned>(layout->stateSize())), layout_(std::move(layout)) {
+                                 const Eigen::AlignedBox3d& workspace)
+    : RealVectorStateSpace(static_cast<unsigned>(layout->stateSize())),
+      layout_(std::move(layout)),
+      workspace_(workspace) {
   setName("World" + getName());
+  const Eigen::Vector3d margin = Eigen::Vector3d::Constant(1.0);
+  const Eigen::AlignedBox3d region(workspace.min() - margin, workspace.max() + margin);
   // Bounds only serve OMPL's uniform sampling (RRT-like planners sample end-effector targets);
   // validity is decided by WorldValidityChecker, not by these boxes.
   constexpr double kMaxSpeed = 10.0;
@@ -35,6 +41,10 @@ const double* WorldStateSpace::values(const ompl::base::State* state) {
 }
 
 double* WorldStateSpace::values(ompl::base::State* state) { return state->as<StateType>()->values; }
+
+void WorldStateSpace::registerProjections() {
+  registerDefaultProjection(std::make_shared<EndEffectorProjection>(this, layout_, workspace_));
+}
 
 double WorldStateSpace::distance(const ompl::base::State* a, const ompl::base::State* b) const {
   return (layout_->goalLinkPosition(values(a)) - layout_->goalLinkPosition(values(b))).norm();

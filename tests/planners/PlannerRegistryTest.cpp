@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <ompl/base/ScopedState.h>
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
@@ -30,6 +31,30 @@ TEST(PlannerRegistryTest, CreatesPlannersOverTheProblemsPhysics) {
     ASSERT_TRUE(planner) << entry->name;
     EXPECT_EQ(planner->getSpaceInformation(), context.spaceInformation());
   }
+}
+
+TEST(PlannerRegistryTest, KpieceProjectsOnTheEndEffectorWithTheRequestedCells) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_free.xml"));
+  physics::PlanningContext context(problem, 0, {});
+  const PlanRequest request = makeRequest(problem, std::nullopt, {{"cell_size", "0.02"}}, 1);
+  ompl::base::PlannerPtr planner =
+      plannerRegistry().at("KPIECE").create(request.parameters, context);
+  planner->setProblemDefinition(context.problemDefinition());
+  planner->setup();  // OMPL sets the state space up again here: our projection must survive it
+
+  const auto projection = context.spaceInformation()->getStateSpace()->getDefaultProjection();
+  ASSERT_EQ(projection.get(), &context.projection());
+  ASSERT_EQ(projection->getDimension(), 2u);                      // the pusher's workspace is flat
+  EXPECT_NEAR(projection->getCellSizes()[0], 0.02 * 0.9, 1e-12);  // workspace x side: 0.9 m
+  EXPECT_NEAR(projection->getCellSizes()[1], 0.02 * 0.72, 1e-12);
+
+  ompl::base::ScopedState<> start(context.spaceInformation());
+  std::copy(context.startState().begin(), context.startState().end(),
+            physics::WorldStateSpace::values(start.get()));
+  Eigen::VectorXd projected(2);
+  projection->project(start.get(), projected);
+  EXPECT_NEAR(projected[0], 0.0, 1e-9);  // the gripper starts at (0, -0.3)
+  EXPECT_NEAR(projected[1], -0.3, 1e-9);
 }
 
 class RequestTest : public ::testing::Test {

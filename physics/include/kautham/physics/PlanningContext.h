@@ -43,7 +43,8 @@ class PlanningContext {
   const WorldValidityChecker& validityChecker() const { return *validity_; }
   const WorkspaceGoal& goal() const { return *goal_; }
   WorkspaceGoal& goal() { return *goal_; }
-  EndEffectorProjection& projection() { return *projection_; }
+  /// KPIECE's projection: the state space's default one (see WorldStateSpace).
+  EndEffectorProjection& projection();
 
   const std::vector<double>& startState() const { return start_; }
   /// Why the start state is invalid, or Violation::None (the planners need a valid start).
@@ -62,7 +63,6 @@ class PlanningContext {
   std::shared_ptr<PhysicsPropagator> propagator_;
   std::shared_ptr<WorldValidityChecker> validity_;
   std::shared_ptr<WorkspaceGoal> goal_;
-  std::shared_ptr<EndEffectorProjection> projection_;
   std::vector<double> start_;
   Violation startViolation_ = Violation::None;
   std::vector<Overlap> startOverlaps_;

@@ -14,9 +14,15 @@ namespace kautham::physics {
 /// the planners, and the objects' states are consequences, not choices.
 class WorldStateSpace : public ompl::base::RealVectorStateSpace {
  public:
-  WorldStateSpace(std::shared_ptr<const WorldLayout> layout, const Eigen::AlignedBox3d& region);
+  /// `workspace` is where the end effector may go: it bounds the sampled end-effector
+  /// positions (with a margin) and sizes the projection's cells.
+  WorldStateSpace(std::shared_ptr<const WorldLayout> layout, const Eigen::AlignedBox3d& workspace);
 
   double distance(const ompl::base::State* a, const ompl::base::State* b) const override;
+  /// Registers the end-effector projection as the default one. (RealVectorStateSpace's own
+  /// would project the first state numbers, the robot's carriage, and OMPL calls this from
+  /// setup(), replacing any projection registered before.)
+  void registerProjections() override;
 
   const WorldLayout& layout() const { return *layout_; }
   static const double* values(const ompl::base::State* state);
@@ -24,6 +30,7 @@ class WorldStateSpace : public ompl::base::RealVectorStateSpace {
 
  private:
   std::shared_ptr<const WorldLayout> layout_;
+  Eigen::AlignedBox3d workspace_;
 };
 
 }  // namespace kautham::physics
