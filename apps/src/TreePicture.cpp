@@ -12,7 +12,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kPixelsPerMetre = 800.0;
+constexpr double kPixelsPerMetre = 700.0;
 constexpr double kMargin = 0.05;  // metres around what is drawn
 
 const char* roleColour(const std::string& role) {
@@ -71,10 +71,18 @@ Bounds drawingBounds(const json& plan) {
   Bounds bounds;
   for (const json& p : plan["tree"]["end_effector"]) bounds.add(p[0], p[1]);
   for (const json& p : plan["goal"]["link_path"]) bounds.add(p[0], p[1]);
+  // Everything but the robot, the table included: the search is seen against the scene.
   for (const json& shape : plan["shapes"]) {
-    if (shape["role"] == "fixed") continue;  // the table would swallow the picture
-    const Eigen::Vector3d c = startPose(plan, shape).translation();
-    bounds.add(c.x(), c.y());
+    if (shape["role"] == "robot") continue;
+    const Eigen::Isometry3d pose = startPose(plan, shape);
+    Eigen::Vector2d half = Eigen::Vector2d::Constant(shape.value("radius", 0.0));
+    if (shape["type"] == "box") {  // the turned rectangle's extent, as for any bounding box
+      const Eigen::Vector2d size(shape["size"][0].get<double>(), shape["size"][1].get<double>());
+      half = pose.linear().topLeftCorner<2, 2>().cwiseAbs() * size / 2.0;
+    }
+    const Eigen::Vector2d c = pose.translation().head<2>();
+    bounds.add(c.x() - half.x(), c.y() - half.y());
+    bounds.add(c.x() + half.x(), c.y() + half.y());
   }
   bounds.box.min().array() -= kMargin;
   bounds.box.max().array() += kMargin;
