@@ -131,14 +131,15 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   const std::string verdict = title[1];
   ASSERT_TRUE(std::regex_match(
       verdict, pass,
-      std::regex(
-          "SELFTEST PASS bodies=(\\d+) shapes=(\\d+) moved=(\\S+):([0-9.]+) contacts=(\\d+)")))
+      std::regex("SELFTEST PASS bodies=(\\d+) shapes=(\\d+) moved=(\\S+):([0-9.]+) contacts=(\\d+) "
+                 "beliefs=(\\d+)")))
       << verdict;
   EXPECT_EQ(pass[1], "9");
   EXPECT_EQ(pass[2], "10");
   EXPECT_EQ(pass[3].str().rfind("can", 0), 0u) << verdict;  // a pushed can
   EXPECT_GT(std::stod(pass[4]), 0.01) << verdict;
   EXPECT_GT(std::stoi(pass[5]), 0) << verdict;  // contact moments marked on the timeline
+  EXPECT_EQ(pass[6], "0") << verdict;           // KPIECE computes no belief
 
   const fs::path screenshot = folder / "plan.png";
   const CommandRun shot =
@@ -147,6 +148,27 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   ASSERT_TRUE(fs::exists(screenshot)) << readFile(folder / "chromium.log");
   EXPECT_EQ(readFile(screenshot).substr(0, 8), "\x89PNG\r\n\x1a\n");
   EXPECT_GT(fs::file_size(screenshot), 10000u);
+}
+
+TEST_F(ViewCommandTest, BeliefsRecordedPerControlAreShownAlongThePath) {
+  const std::string browser = findChromium();
+  ASSERT_FALSE(browser.empty()) << "Chromium is not installed";
+  const fs::path planFile = folder / "plan.json";
+  ASSERT_EQ(
+      kautham("plan problems/pusher_cans_5.xml --seed 1 -o '" + planFile.string() + "'").exitCode,
+      0);
+  // A belief per control, as p-KPIECE records one per motion.
+  nlohmann::json plan = nlohmann::json::parse(readFile(planFile));
+  for (auto& control : plan["controls"]) control["belief"] = 0.8;
+  writeFile(planFile, plan.dump());
+  const fs::path page = folder / "plan.html";
+  ASSERT_EQ(kautham("view '" + planFile.string() + "' -o '" + page.string() + "'").exitCode, 0);
+
+  const CommandRun dom = chromium(browser, folder, page, "#selftest", "--dump-dom");
+  ASSERT_EQ(dom.exitCode, 0) << readFile(folder / "chromium.log");
+  std::smatch beliefs;
+  ASSERT_TRUE(std::regex_search(dom.output, beliefs, std::regex("beliefs=(\\d+)"))) << dom.output;
+  EXPECT_EQ(std::stoul(beliefs[1]), plan["frames"].size() - 1);  // every frame after the start
 }
 
 TEST_F(ViewCommandTest, ViewMakesTheSamePageAsPlanHtml) {
