@@ -111,14 +111,8 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   command->add_option("problem", options->problem, "problem file (XML)")->required();
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
-  command->callback([options, &exitCode] {
-    try {
-      exitCode = runCheck(*options);
-    } catch (const std::exception& e) {  // InputError and bad planner parameters alike
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitBadInput;
-    }
-  });
+  command->callback(
+      [options, &exitCode] { exitCode = runReportingErrors([&] { return runCheck(*options); }); });
 }
 
 }  // namespace kautham::apps

@@ -153,23 +153,8 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->allow_extra_args(false);
   command->add_option("--query", options->query, "index of the query to plan")
       ->capture_default_str();
-  command->callback([options, &exitCode] {
-    try {
-      exitCode = runPlan(*options);
-    } catch (const ViewError& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitBadInput;
-    } catch (const core::InputError& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitBadInput;
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitBadInput;
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitNotSolved;
-    }
-  });
+  command->callback(
+      [options, &exitCode] { exitCode = runReportingErrors([&] { return runPlan(*options); }); });
 }
 
 }  // namespace kautham::apps

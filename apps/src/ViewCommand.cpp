@@ -55,17 +55,8 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                       "folder with three.min.js and examples/js/controls/OrbitControls.js "
                       "(default: " +
                           kDefaultThreeDir.string() + ", from Debian's libjs-three)");
-  command->callback([options, &exitCode] {
-    try {
-      exitCode = runView(*options);
-    } catch (const ViewError& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitBadInput;
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "error: {}\n", e.what());
-      exitCode = kExitBadInput;
-    }
-  });
+  command->callback(
+      [options, &exitCode] { exitCode = runReportingErrors([&] { return runView(*options); }); });
 }
 
 }  // namespace kautham::apps

@@ -78,12 +78,6 @@ std::vector<double> World::jointPositions() const {
 
 void World::resetSolverSeed() const { dRandSetSeed(0); }
 
-void World::setContactParameters(double friction, double erp, double cfm) {
-  settings_.friction = friction;
-  settings_.erp = erp;
-  settings_.cfm = cfm;
-}
-
 void World::step() {
   dSpaceCollide(space_, this, &World::nearCallback);
   dWorldQuickStep(world_, settings_.stepSize);

@@ -68,9 +68,6 @@ class World {
   /// excluded), which clears the record.
   std::vector<int> takeTouchedBodies();
 
-  /// Contact parameters used for every new contact (sampled per particle in later planners).
-  void setContactParameters(double friction, double erp, double cfm);
-
  private:
   class Builder;
   friend class Builder;
