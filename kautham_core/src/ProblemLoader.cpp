@@ -58,7 +58,7 @@ class ProblemReader {
     xml_.allowAttributes(root, {"name"});
     problem_.file = xml_.file();
     problem_.name = xml_.optionalText(root, "name").value_or(xml_.file().stem().string());
-    xml_.atMostOnce(root, {"Physics", "Interaction", "Workspace"});
+    xml_.atMostOnce(root, {"Physics", "Interaction", "Kinodynamics", "Workspace"});
     for (const XMLElement* e = root.FirstChildElement(); e; e = e->NextSiblingElement())
       readTopLevel(*e);
     if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
@@ -81,6 +81,8 @@ class ProblemReader {
       readPhysics(e);
     else if (tag == "Interaction")
       readInteraction(e);
+    else if (tag == "Kinodynamics")
+      readKinodynamics(e);
     else if (tag == "Workspace")
       readWorkspace(e);
     else if (tag == "Planner")
@@ -91,7 +93,8 @@ class ProblemReader {
                 "control per movable joint");
     else
       xml_.fail(e, "unexpected element <" + tag +
-                       ">; expected Robot, Obstacle, Physics, Interaction, Workspace or Planner");
+                       ">; expected Robot, Obstacle, Controls, Physics, Interaction, Kinodynamics, "
+                       "Workspace or Planner");
   }
 
   fs::path findModel(const XMLElement& e, const std::string& relative) const {
@@ -224,6 +227,17 @@ class ProblemReader {
     c.maxTilt = positive(e, "maxTilt", c.maxTilt);
     c.targetTolerance = positive(e, "targetTolerance", c.targetTolerance);
     c.supportObject = xml_.optionalText(e, "support").value_or("");
+  }
+
+  void readKinodynamics(const XMLElement& e) {
+    xml_.allowAttributes(e, {"jointLimitTolerance", "jointSpeedFactor", "maxLinkSpeed"});
+    KinodynamicLimits& k = problem_.kinodynamics;
+    k.where = xml_.at(e);
+    k.jointLimitTolerance = nonNegative(e, "jointLimitTolerance", k.jointLimitTolerance);
+    k.jointSpeedFactor = positive(e, "jointSpeedFactor", k.jointSpeedFactor);
+    k.maxLinkSpeed = positive(e, "maxLinkSpeed", k.maxLinkSpeed);
+    if (k.jointSpeedFactor < 1.0)
+      xml_.fail(e, "jointSpeedFactor must be at least 1: the motors themselves reach the limit");
   }
 
   void readWorkspace(const XMLElement& e) {

@@ -31,6 +31,10 @@ void World::readState(double* state) const {
     std::copy(v, v + 3, s + WorldLayout::kLinearVelocity);
     std::copy(w, w + 3, s + WorldLayout::kAngularVelocity);
   }
+  const std::vector<double> positions = jointPositions();
+  const std::vector<double> rates = jointVelocities();
+  std::copy(positions.begin(), positions.end(), state + layout_.jointPositionIndex());
+  std::copy(rates.begin(), rates.end(), state + layout_.jointVelocityIndex());
   state[layout_.flagsIndex()] = 0.0;
 }
 
@@ -74,6 +78,14 @@ std::vector<double> World::jointPositions() const {
     positions.push_back(a.type == core::JointType::Prismatic ? dJointGetSliderPosition(a.joint)
                                                              : dJointGetHingeAngle(a.joint));
   return positions;
+}
+
+std::vector<double> World::jointVelocities() const {
+  std::vector<double> rates;
+  for (const Actuator& a : actuators_)
+    rates.push_back(a.type == core::JointType::Prismatic ? dJointGetSliderPositionRate(a.joint)
+                                                         : dJointGetHingeAngleRate(a.joint));
+  return rates;
 }
 
 void World::resetSolverSeed() const { dRandSetSeed(0); }

@@ -268,6 +268,9 @@ class World::Builder {
       setLimitsAndMotor(id, joint, &dJointSetHingeParam);
     }
     world_.actuators_.push_back({joint.name, id, joint.type, joint.maxVelocity});
+    const bool limited = joint.type != core::JointType::Continuous;
+    world_.layout_.joints.push_back({joint.name, limited ? joint.lower : 0.0,
+                                     limited ? joint.upper : 0.0, joint.maxVelocity, limited});
   }
 
   static void setLimitsAndMotor(dJointID id, const core::Joint& joint,

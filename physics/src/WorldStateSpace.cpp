@@ -1,5 +1,8 @@
 #include "kautham/physics/WorldStateSpace.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "kautham/physics/EndEffectorProjection.h"
 
 namespace kautham::physics {
@@ -30,6 +33,15 @@ WorldStateSpace::WorldStateSpace(std::shared_ptr<const WorldLayout> layout,
       bounds.setLow(base + WorldLayout::kOrientation + k, -1.0);
       bounds.setHigh(base + WorldLayout::kOrientation + k, 1.0);
     }
+  }
+  for (std::size_t j = 0; j < layout_->joints.size(); ++j) {
+    const JointInfo& joint = layout_->joints[j];
+    const double lower = joint.limited ? joint.lower : -M_PI;
+    const double upper = joint.limited ? joint.upper : M_PI;
+    bounds.setLow(layout_->jointPositionIndex() + j, lower);
+    bounds.setHigh(layout_->jointPositionIndex() + j, std::max(upper, lower + 1e-9));
+    bounds.setLow(layout_->jointVelocityIndex() + j, -joint.maxVelocity);
+    bounds.setHigh(layout_->jointVelocityIndex() + j, std::max(joint.maxVelocity, 1e-9));
   }
   bounds.setLow(layout_->flagsIndex(), 0.0);
   bounds.setHigh(layout_->flagsIndex(), 0.0);

@@ -21,6 +21,12 @@ const char* toString(Violation violation) {
       return "target moved";
     case Violation::OutsideWorkspace:
       return "end effector left the workspace";
+    case Violation::JointLimit:
+      return "joint beyond its limit";
+    case Violation::JointTooFast:
+      return "joint too fast";
+    case Violation::LinkTooFast:
+      return "robot link too fast";
     case Violation::ObjectTooFast:
       return "object too fast";
     case Violation::ObjectTilted:
@@ -43,6 +49,7 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
     : StateValidityChecker(si),
       layout_(std::move(layout)),
       limits_(problem.interaction),
+      robotLimits_(problem.kinodynamics),
       workspace_(problem.workspace) {
   if (auto support = problem.supportObject())
     supportShapes_ = core::shapesAtHome(problem.objects[*support]);
@@ -66,6 +73,7 @@ Violation WorldValidityChecker::check(const double* state) const {
   if ((WorldLayout::position(state, targetBody_) - targetStart_).norm() > limits_.targetTolerance)
     return Violation::TargetMoved;
   if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
+  if (Violation v = checkRobot(state); v != Violation::None) return v;
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
     if (layout_->bodies[b].role == BodyRole::Movable)
       if (Violation v = checkObject(state, b); v != Violation::None) return v;
@@ -86,6 +94,25 @@ bool WorldValidityChecker::onSupport(const Eigen::Vector3d& position) const {
     }
   }
   return false;
+}
+
+Violation WorldValidityChecker::checkRobot(const double* state) const {
+  const std::vector<JointInfo>& joints = layout_->joints;
+  const double tolerance = robotLimits_.jointLimitTolerance;
+  for (std::size_t j = 0; j < joints.size(); ++j) {
+    const double q = state[layout_->jointPositionIndex() + j];
+    if (joints[j].limited &&
+        !(q >= joints[j].lower - tolerance && q <= joints[j].upper + tolerance))
+      return Violation::JointLimit;
+    const double rate = state[layout_->jointVelocityIndex() + j];
+    if (!(std::abs(rate) <= joints[j].maxVelocity * robotLimits_.jointSpeedFactor))
+      return Violation::JointTooFast;
+  }
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
+    if (layout_->bodies[b].role == BodyRole::Robot &&
+        WorldLayout::linearVelocity(state, b).norm() > robotLimits_.maxLinkSpeed)
+      return Violation::LinkTooFast;
+  return Violation::None;
 }
 
 Violation WorldValidityChecker::checkObject(const double* state, std::size_t body) const {

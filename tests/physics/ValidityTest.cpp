@@ -131,6 +131,60 @@ TEST(ValidityTest, EndEffectorOutsideTheWorkspaceIsInvalid) {
   EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::OutsideWorkspace);
 }
 
+TEST(ValidityTest, StatesRecordTheRobotJointsAsTheyMove) {
+  ContextFixture scene("problems/pusher_free.xml");
+  const WorldLayout& layout = scene.context.layout();
+  ASSERT_EQ(layout.joints.size(), 3u);
+  EXPECT_EQ(layout.joints[0].name, "x");
+  const double x0 = scene.state[layout.jointPositionIndex()];
+  const double palm0 = scene.bodyState("pusher/gripper")[0];
+  EXPECT_EQ(scene.drive({0.2, 0.0, 0.0}, 10), Violation::None);
+  const double x1 = scene.state[layout.jointPositionIndex()];
+  // The joint moved as the palm did, and its rate is the commanded one.
+  EXPECT_NEAR(x1 - x0, scene.bodyState("pusher/gripper")[0] - palm0, 1e-6);
+  EXPECT_NEAR(x1 - x0, 0.1, 0.01);
+  EXPECT_NEAR(scene.state[layout.jointVelocityIndex()], 0.2, 0.01);
+}
+
+TEST(ValidityTest, JointBeyondItsLimitIsInvalid) {
+  ContextFixture scene("problems/pusher_free.xml");
+  const WorldLayout& layout = scene.context.layout();
+  const std::size_t yaw = layout.jointPositionIndex() + 2;  // limits +-0.6 rad
+  scene.state[yaw] = 0.6 + 0.015;                           // within the 0.02 tolerance
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  scene.state[yaw] = 0.6 + 0.03;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::JointLimit);
+  scene.state[yaw] = std::nan("");
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::JointLimit);
+}
+
+TEST(ValidityTest, JointFasterThanItsLimitIsInvalid) {
+  ContextFixture scene("problems/pusher_free.xml");
+  const std::size_t yawRate = scene.context.layout().jointVelocityIndex() + 2;  // 0.5 rad/s
+  scene.state[yawRate] = -0.59;  // within the default factor 1.2
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  scene.state[yawRate] = -0.61;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::JointTooFast);
+}
+
+TEST(ValidityTest, RobotLinkFasterThanTheLimitIsInvalid) {
+  ContextFixture scene("problems/pusher_free.xml");
+  double* gripper = scene.bodyState("pusher/gripper");
+  gripper[WorldLayout::kLinearVelocity + 2] = 1.9;  // default limit 2 m/s
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None);
+  gripper[WorldLayout::kLinearVelocity + 2] = 2.1;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::LinkTooFast);
+}
+
+TEST(ValidityTest, KinodynamicLimitsComeFromTheProblemFile) {
+  ContextFixture scene("tests/data/pusher_wall.xml");  // <Kinodynamics maxLinkSpeed="0.3" ..>
+  EXPECT_DOUBLE_EQ(scene.problem.kinodynamics.maxLinkSpeed, 0.3);
+  EXPECT_DOUBLE_EQ(scene.problem.kinodynamics.jointSpeedFactor, 1.5);
+  EXPECT_DOUBLE_EQ(scene.problem.kinodynamics.jointLimitTolerance, 0.01);
+  scene.bodyState("pusher/gripper")[WorldLayout::kLinearVelocity] = 0.31;
+  EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::LinkTooFast);
+}
+
 TEST(ValidityTest, SimulationBlowUpIsDetectedAndRejected) {
   ContextFixture scene("problems/pusher_cans_5.xml");
   scene.bodyState("can4")[WorldLayout::kLinearVelocity] = std::nan("");

@@ -65,6 +65,14 @@ struct InteractionConstraints {
   SourceLocation where;
 };
 
+/// The <Kinodynamics> block: how far the robot's own motion may go (DESIGN.md section 4).
+struct KinodynamicLimits {
+  double jointLimitTolerance = 0.02;  ///< rad or m a joint may pass its URDF limit (ODE stops give)
+  double jointSpeedFactor = 1.2;  ///< a joint faster than this times its URDF velocity is invalid
+  double maxLinkSpeed = 2.0;      ///< m/s, any robot link's centre of mass
+  SourceLocation where;
+};
+
 /// A pre-grasp region: a robot link's origin within `tolerance` of a point given in the frame
 /// of `relativeTo` (an object's home pose; the world when empty).
 struct GoalRegion {
@@ -105,6 +113,7 @@ struct Problem {
   std::vector<ObjectInstance> objects;
   PhysicsSettings physics;
   InteractionConstraints interaction;
+  KinodynamicLimits kinodynamics;
   Eigen::AlignedBox3d workspace;  ///< where the robot's goal link may go
   PlannerSpec planner;
   std::vector<Query> queries;

@@ -54,6 +54,8 @@ class World {
   void setJointVelocities(const double* velocities);
   /// Current position of each actuated joint (radians or metres), read from ODE.
   std::vector<double> jointPositions() const;
+  /// Current rate of each actuated joint (rad/s or m/s), read from ODE.
+  std::vector<double> jointVelocities() const;
 
   void resetSolverSeed() const;
   /// Detects contacts, advances the simulation by one step, and records contact events.

@@ -33,6 +33,16 @@ struct ShapeInfo {
   std::string role;   ///< "robot", "fixed", "movable" or "target"
 };
 
+/// A robot joint as the state records it: its position and rate are part of every state, so
+/// validity can check joint limits and speeds without the physics engine.
+struct JointInfo {
+  std::string name;
+  double lower = 0.0;  ///< radians or metres (both 0 for continuous joints: no limits)
+  double upper = 0.0;
+  double maxVelocity = 0.0;  ///< URDF velocity limit, rad/s or m/s
+  bool limited = true;       ///< false for continuous joints
+};
+
 /// Reasons why a propagation step produced an invalid state; stored as bit flags in the state.
 enum ContactEvent : unsigned {
   kNoEvent = 0,
@@ -42,7 +52,9 @@ enum ContactEvent : unsigned {
 };
 
 /// The layout of a world state: every dynamic body's 13 numbers (position, unit quaternion
-/// w-x-y-z, linear and angular velocity), then one number holding ContactEvent flags.
+/// w-x-y-z, linear and angular velocity), the position of every robot joint, the rate of every
+/// robot joint, then one number holding ContactEvent flags. Joint values are read back from the
+/// bodies: writing a state sets the bodies only.
 /// Planners, validity checks and replays read states through this description only.
 class WorldLayout {
  public:
@@ -54,11 +66,14 @@ class WorldLayout {
 
   std::vector<BodyInfo> bodies;
   std::vector<ShapeInfo> shapes;
-  int goalBody = -1;  ///< the body that carries the goal link
+  std::vector<JointInfo> joints;  ///< the robot's movable joints, in KinematicModel order
+  int goalBody = -1;              ///< the body that carries the goal link
   Eigen::Isometry3d goalLinkInBody = Eigen::Isometry3d::Identity();
 
-  std::size_t stateSize() const { return bodies.size() * kBodyStateSize + 1; }
-  std::size_t flagsIndex() const { return bodies.size() * kBodyStateSize; }
+  std::size_t stateSize() const { return flagsIndex() + 1; }
+  std::size_t jointPositionIndex() const { return bodies.size() * kBodyStateSize; }
+  std::size_t jointVelocityIndex() const { return jointPositionIndex() + joints.size(); }
+  std::size_t flagsIndex() const { return jointVelocityIndex() + joints.size(); }
 
   static Eigen::Vector3d position(const double* state, std::size_t body);
   static Eigen::Quaterniond orientation(const double* state, std::size_t body);

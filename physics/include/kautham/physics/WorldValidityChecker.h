@@ -18,6 +18,9 @@ enum class Violation {
   RobotTouchedTarget,  ///< the robot touched the target
   TargetMoved,         ///< the target drifted more than the tolerance
   OutsideWorkspace,    ///< the end effector left the workspace
+  JointLimit,          ///< a robot joint passed its limit by more than the tolerance
+  JointTooFast,        ///< a robot joint turned faster than its velocity limit allows
+  LinkTooFast,         ///< a robot link moved faster than the link speed limit
   ObjectTooFast,       ///< a movable object is faster than the limit
   ObjectTilted,        ///< a movable object tipped beyond the limit
   ObjectOffSupport,    ///< a movable object left the table (or fell)
@@ -39,9 +42,11 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
 
  private:
   Violation checkObject(const double* state, std::size_t body) const;
+  Violation checkRobot(const double* state) const;
 
   std::shared_ptr<const WorldLayout> layout_;
   core::InteractionConstraints limits_;
+  core::KinodynamicLimits robotLimits_;
   Eigen::AlignedBox3d workspace_;
   bool onSupport(const Eigen::Vector3d& position) const;
 
