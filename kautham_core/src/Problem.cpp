@@ -30,25 +30,48 @@ std::optional<int> Problem::findObject(const std::string& objectName) const {
   return std::nullopt;
 }
 
+bool Problem::hasTarget() const {
+  for (const ObjectInstance& object : objects)
+    if (object.role == ObjectRole::Target) return true;
+  return false;
+}
+
 Eigen::Vector3d Problem::goalPosition(const GoalRegion& goal) const {
+  if (goal.isConfiguration()) {
+    const std::vector<Eigen::Isometry3d> poses =
+        robot.model.linkPoses(robot.home.isometry(), jointValuesFromControls(goal.controls));
+    return poses.at(static_cast<std::size_t>(*robot.model.findLink(goal.link))).translation();
+  }
   if (goal.relativeTo.empty()) return goal.offset;
   return objects.at(*findObject(goal.relativeTo)).home.isometry() * goal.offset;
 }
 
+std::optional<Eigen::Vector3d> Problem::goalApproach(const GoalRegion& goal) const {
+  if (!goal.approach) return std::nullopt;
+  if (goal.relativeTo.empty()) return *goal.approach;
+  return objects.at(*findObject(goal.relativeTo)).home.isometry().linear() * *goal.approach;
+}
+
 std::vector<double> Problem::initialJointValues(const Query& query) const {
-  const std::vector<int> movable = robot.model.movableJoints();
   if (query.init.empty()) return robot.initialJoints;
+  return jointValuesFromControls(query.init);
+}
+
+std::vector<double> Problem::jointValuesFromControls(const std::vector<double>& controls) const {
+  const std::vector<int> movable = robot.model.movableJoints();
+  const Eigen::VectorXd normalized = robot.controls.normalizedConfiguration(controls);
   std::vector<double> values(movable.size());
   for (std::size_t i = 0; i < movable.size(); ++i) {
     const Joint& joint = robot.model.joints[movable[i]];
-    const double normalized = std::clamp(query.init.at(i), 0.0, 1.0);
-    values[i] = joint.lower + normalized * (joint.upper - joint.lower);
+    values[i] =
+        joint.lower + normalized[static_cast<Eigen::Index>(i)] * (joint.upper - joint.lower);
   }
   return values;
 }
 
 std::optional<int> Problem::supportObject() const {
   if (!interaction.supportObject.empty()) return findObject(interaction.supportObject);
+  if (!hasTarget()) return std::nullopt;
   const Eigen::Vector3d below = target().home.position;
   std::optional<int> best;
   double bestTop = -std::numeric_limits<double>::infinity();

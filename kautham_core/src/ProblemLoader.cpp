@@ -5,7 +5,9 @@
 #include <cstring>
 #include <limits>
 #include <set>
+#include <sstream>
 
+#include "MobileBase.h"
 #include "XmlReader.h"
 #include "kautham/core/UrdfLoader.h"
 
@@ -63,8 +65,9 @@ class ProblemReader {
       readTopLevel(*e);
     if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
     if (!plannerElement_) xml_.fail(root, "the problem has no <Planner> block");
-    // Read last, wherever it stands: <Init> needs the robot, and Kautham's physics parameters
-    // override the <Physics> block.
+    readControls();
+    // Read last, wherever it stands: <Init> needs the robot and its controls, and Kautham's
+    // physics parameters override the <Physics> block.
     readPlanner(*plannerElement_);
     check(root);
     return std::move(problem_);
@@ -88,9 +91,7 @@ class ProblemReader {
     else if (tag == "Planner")
       setPlannerElement(e);
     else if (tag == "Controls")
-      xml_.fail(e,
-                "<Controls> (Kautham control sets) is not supported yet: remove it to get one "
-                "control per movable joint");
+      setControlsElement(e);
     else
       xml_.fail(e, "unexpected element <" + tag +
                        ">; expected Robot, Obstacle, Controls, Physics, Interaction, Kinodynamics, "
@@ -130,16 +131,43 @@ class ProblemReader {
     instance.name = xml_.optionalText(e, "name").value_or(instance.model.name);
     if (const XMLElement* rename = e.FirstChildElement("KauthamName"))
       instance.name = xml_.requiredText(*rename, "name");
+    const bool robot = std::strcmp(e.Name(), "Robot") == 0;
     for (const XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
-      if (tag == "Limits")
-        xml_.fail(*c,
-                  "<Limits> (mobile-base translation) is not supported yet: give the base "
-                  "prismatic joints in the URDF instead");
-      if (tag != "Home" && tag != "KauthamName" && tag != "Uncertainty")
+      if (tag == "Limits" && !robot)
+        xml_.fail(*c, "<Limits> moves a robot's base; an <Obstacle> has none");
+      if (tag != "Home" && tag != "KauthamName" && tag != "Uncertainty" && tag != "Limits")
         xml_.fail(*c, "unexpected <" + tag + "> inside <" + e.Name() +
-                          ">; expected Home, KauthamName or Uncertainty");
+                          ">; expected Home, KauthamName, Limits or Uncertainty");
     }
+  }
+
+  /// Kautham's <Limits>: X, Y and Z become base joints; the rotations (WX, WY, WZ, TH/THETA)
+  /// are accepted so Kautham files load, and the base does not turn.
+  std::vector<BaseAxisLimits> readBaseLimits(const XMLElement& robot) const {
+    std::vector<BaseAxisLimits> axes;
+    for (const XMLElement* l = robot.FirstChildElement("Limits"); l;
+         l = l->NextSiblingElement("Limits")) {
+      xml_.allowAttributes(*l, {"name", "min", "max", "velocity", "effort"});
+      BaseAxisLimits limits;
+      limits.where = xml_.at(*l);
+      limits.axis = xml_.requiredText(*l, "name");
+      limits.min = xml_.requiredNumber(*l, "min");
+      limits.max = xml_.requiredNumber(*l, "max");
+      limits.velocity = positive(*l, "velocity", limits.velocity);
+      limits.effort = positive(*l, "effort", limits.effort);
+      const std::set<std::string> rotations{"WX", "WY", "WZ", "TH", "THETA"};
+      if (rotations.count(limits.axis)) continue;
+      if (limits.axis != "X" && limits.axis != "Y" && limits.axis != "Z")
+        xml_.fail(*l, "unknown <Limits name=\"" + limits.axis +
+                          "\">; expected X, Y, Z (or WX, WY, WZ, TH, which are ignored)");
+      if (!(limits.min < limits.max)) xml_.fail(*l, "<Limits> needs min < max");
+      for (const BaseAxisLimits& other : axes)
+        if (other.axis == limits.axis)
+          xml_.fail(*l, "a second <Limits name=\"" + limits.axis + "\">");
+      axes.push_back(limits);
+    }
+    return axes;
   }
 
   /// A URDF error names the URDF's line; say which line of the problem asked for it, too.
@@ -160,14 +188,26 @@ class ProblemReader {
     if (const XMLElement* u = e.FirstChildElement("Uncertainty"))
       xml_.fail(*u, "<Uncertainty> is for objects' poses; a <Robot> has none");
     readModel(e, "robot", problem_.robot);
+    problem_.robot.baseAxes = readBaseLimits(e);
+    addMobileBase(problem_.robot.model, problem_.robot.baseAxes);
+    problem_.robot.controls = ControlSet::onePerJoint(problem_.robot.model);
     const KinematicModel& model = problem_.robot.model;
     for (int j : model.movableJoints())
       problem_.robot.initialJoints.push_back(
           std::clamp(0.0, model.joints[j].lower, model.joints[j].upper));
   }
 
-  ObjectRole readRole(const XMLElement& e) const {
-    const std::string role = xml_.optionalText(e, "role").value_or("fixed");
+  /// Without a role attribute (Kautham's own files), an object with mass in its URDF can be
+  /// pushed and one without is fixed.
+  ObjectRole readRole(const XMLElement& e, const KinematicModel& model) {
+    const std::optional<std::string> given = xml_.optionalText(e, "role");
+    if (!given) {
+      double mass = 0.0;
+      for (const Link& link : model.links) mass += link.inertial.mass;
+      return mass > 0.0 ? ObjectRole::Movable : ObjectRole::Fixed;
+    }
+    rolesGiven_ = true;
+    const std::string& role = *given;
     if (role == "fixed") return ObjectRole::Fixed;
     if (role == "movable") return ObjectRole::Movable;
     if (role == "target") return ObjectRole::Target;
@@ -177,8 +217,8 @@ class ProblemReader {
   void readObstacle(const XMLElement& e) {
     xml_.allowAttributes(e, {"obstacle", "scale", "name", "role"});
     ObjectInstance object;
-    object.role = readRole(e);
     readModel(e, "obstacle", object);
+    object.role = readRole(e, object.model);
     if (const XMLElement* u = e.FirstChildElement("Uncertainty")) {
       xml_.allowAttributes(*u, {"x", "y", "yaw"});
       object.uncertainty = {nonNegative(*u, "x"), nonNegative(*u, "y"), nonNegative(*u, "yaw")};
@@ -251,6 +291,34 @@ class ProblemReader {
       xml_.fail(e, "<Workspace> needs min < max on every axis");
   }
 
+  void setControlsElement(const XMLElement& e) {
+    if (controlsElement_) xml_.fail(e, "only one <Controls> is supported (one robot)");
+    controlsElement_ = &e;
+  }
+
+  /// Kautham's <Controls robot="file.cntr"/>: the planner's controls for the robot.
+  void readControls() {
+    if (!controlsElement_) return;
+    const XMLElement& e = *controlsElement_;
+    xml_.allowAttributes(e, {"robot", "obstacle"});
+    if (xml_.optionalText(e, "obstacle"))
+      xml_.fail(e, "controls for obstacles are not supported: objects move only when pushed");
+    const SourceLocation where = xml_.at(e);
+    const fs::path file = findModel(e, xml_.requiredText(e, "robot"));
+    RobotInstance& robot = problem_.robot;
+    try {
+      robot.controls = loadControlSet(file, robot.model, where);
+    } catch (const InputError& error) {
+      if (error.where().file == where.file) throw;
+      throw InputError(error.where(),
+                       std::string(error.what()).substr(error.where().str().size() + 2) +
+                           "\n  (control set loaded at " + where.str() + ")");
+    }
+    // Without an <Init>, every control sits at its middle: the joints at the set's offset.
+    robot.initialJoints =
+        problem_.jointValuesFromControls(std::vector<double>(robot.controls.size(), 0.5));
+  }
+
   void setPlannerElement(const XMLElement& e) {
     if (plannerElement_) xml_.fail(e, "only one <Planner> block is supported");
     plannerElement_ = &e;
@@ -290,43 +358,118 @@ class ProblemReader {
     if (std::strcmp(q.Name(), "Query") != 0)
       xml_.fail(q, std::string("unexpected <") + q.Name() + "> inside <Queries>; expected <Query>");
     xml_.allowAttributes(q, {"name"});
-    xml_.allowChildren(q, {"Init", "Goal", "GoalRegion"});
-    xml_.atMostOnce(q, {"Init", "GoalRegion"});
+    xml_.allowChildren(q, {"Init", "Goal", "GoalRegion", "RobotControl"});
+    xml_.atMostOnce(q, {"Init", "Goal", "GoalRegion", "RobotControl"});
     Query query;
     query.where = xml_.at(q);
     query.name =
         xml_.optionalText(q, "name").value_or("query" + std::to_string(problem_.queries.size()));
-    if (const XMLElement* init = q.FirstChildElement("Init")) query.init = readInit(*init);
-    if (q.FirstChildElement("Goal"))
-      xml_.fail(*q.FirstChildElement("Goal"),
-                "a joint-space <Goal> is not supported yet; give a <GoalRegion link=\"..\" "
-                "relativeTo=\"..\" offset=\"x y z\" tolerance=\"..\"/>");
-    const XMLElement* goal = q.FirstChildElement("GoalRegion");
-    if (!goal) xml_.fail(q, "<Query> needs a <GoalRegion>");
-    query.goal = readGoalRegion(*goal);
+    const XMLElement* init = q.FirstChildElement("Init");
+    const XMLElement* goal = q.FirstChildElement("Goal");
+    const XMLElement* region = q.FirstChildElement("GoalRegion");
+    if (const XMLElement* named = q.FirstChildElement("RobotControl")) {
+      if (init || goal)
+        xml_.fail(*named, "give either <RobotControl init=.. goal=..> or <Init>/<Goal>, not both");
+      readRobotControl(*named, query, region != nullptr);
+    } else {
+      if (init) query.init = readControls(*init, xml_.numbersInText(*init), "<Init>");
+      if (goal) query.goal.controls = readControls(*goal, xml_.numbersInText(*goal), "<Goal>");
+    }
+    if (region) {
+      if (query.goal.isConfiguration())
+        xml_.fail(*region, "a query has one goal: a <Goal> configuration or a <GoalRegion>");
+      query.goal = readGoalRegion(*region);
+    } else if (query.goal.isConfiguration()) {
+      query.goal.where = xml_.at(goal ? *goal : *q.FirstChildElement("RobotControl"));
+      query.goal.link = tipLink();
+    } else {
+      xml_.fail(q,
+                "<Query> needs a goal: a <GoalRegion link=.. relativeTo=.. offset=..> or a "
+                "<Goal> configuration");
+    }
     problem_.queries.push_back(query);
   }
 
-  std::vector<double> readInit(const XMLElement& init) const {
-    std::vector<double> values = xml_.numbersInText(init);
-    const std::size_t dof = problem_.robot.model.movableJoints().size();
-    if (values.size() != dof)
-      xml_.fail(init, "<Init> needs " + std::to_string(dof) +
-                          " normalized values (one per movable joint), got " +
-                          std::to_string(values.size()));
+  /// A named query line: <RobotControl name="robot" init="c1 c2 .." goal="c1 c2 .."/>.
+  void readRobotControl(const XMLElement& e, Query& query, bool hasRegion) const {
+    xml_.allowAttributes(e, {"name", "init", "goal", "tolerance"});
+    const std::string robot = xml_.requiredText(e, "name");
+    if (robot != problem_.robot.name && robot != problem_.robot.model.name)
+      xml_.fail(e, "<RobotControl name=\"" + robot + "\"> names no robot; the robot is '" +
+                       problem_.robot.name + "'");
+    auto numbers = [&](const char* attribute) {
+      std::vector<double> values;
+      std::istringstream text(xml_.requiredText(e, attribute));
+      std::string word;
+      while (text >> word) {
+        char* end = nullptr;
+        const double v = std::strtod(word.c_str(), &end);
+        if (end == word.c_str() || *end != '\0' || !std::isfinite(v))
+          xml_.fail(e, std::string(attribute) + " must hold numbers, got '" + word + "'");
+        values.push_back(v);
+      }
+      return values;
+    };
+    query.init = readControls(e, numbers("init"), "init");
+    if (xml_.optionalText(e, "goal")) {
+      if (hasRegion) xml_.fail(e, "a query has one goal: goal=\"..\" or a <GoalRegion>");
+      query.goal.controls = readControls(e, numbers("goal"), "goal");
+      query.goal.jointTolerance = positive(e, "tolerance", query.goal.jointTolerance);
+    }
+  }
+
+  /// Normalized controls of <Init>/<Goal>: one per control of the robot, each in [0, 1].
+  std::vector<double> readControls(const XMLElement& e, std::vector<double> values,
+                                   const std::string& what) const {
+    const std::size_t count = problem_.robot.controls.size();
+    if (const auto dim = xml_.optionalText(e, "dim"); dim && std::to_string(count) != *dim)
+      xml_.fail(e, what + " says dim=\"" + *dim + "\" but the robot has " + std::to_string(count) +
+                       " controls");
+    if (values.size() != count)
+      xml_.fail(e, what + " needs " + std::to_string(count) +
+                       " normalized values (one per control), got " +
+                       std::to_string(values.size()));
     for (double v : values)
-      if (v < 0.0 || v > 1.0) xml_.fail(init, "<Init> values are normalized: each in [0, 1]");
+      if (v < 0.0 || v > 1.0) xml_.fail(e, what + " values are normalized: each in [0, 1]");
     return values;
   }
 
+  /// The robot's deepest link: what a configuration goal's progress is measured by.
+  std::string tipLink() const {
+    const KinematicModel& model = problem_.robot.model;
+    std::size_t best = static_cast<std::size_t>(model.rootLink);
+    int bestDepth = -1;
+    for (std::size_t l = 0; l < model.links.size(); ++l) {
+      int depth = 0;
+      for (int j = model.links[l].parentJoint; j >= 0;
+           j = model.links[static_cast<std::size_t>(model.joints[j].parentLink)].parentJoint)
+        depth += model.joints[j].isMovable() ? 1 : 0;
+      if (depth > bestDepth) {
+        bestDepth = depth;
+        best = l;
+      }
+    }
+    return model.links[best].name;
+  }
+
   GoalRegion readGoalRegion(const XMLElement& e) const {
-    xml_.allowAttributes(e, {"link", "relativeTo", "offset", "tolerance"});
+    xml_.allowAttributes(
+        e, {"link", "relativeTo", "offset", "tolerance", "approach", "approachTolerance"});
     GoalRegion goal;
     goal.where = xml_.at(e);
     goal.link = xml_.requiredText(e, "link");
     goal.relativeTo = xml_.optionalText(e, "relativeTo").value_or("");
     goal.offset = xml_.vector3(e, "offset", goal.offset);
     goal.tolerance = positive(e, "tolerance", goal.tolerance);
+    if (xml_.optionalText(e, "approach")) {
+      const Eigen::Vector3d approach = xml_.vector3(e, "approach", {});
+      if (!(approach.norm() > 1e-9)) xml_.fail(e, "approach must be a non-zero direction");
+      goal.approach = approach.normalized();
+      goal.approachTolerance = positive(e, "approachTolerance", goal.approachTolerance);
+      if (goal.approachTolerance > M_PI) xml_.fail(e, "approachTolerance must be at most pi");
+    } else if (xml_.optionalText(e, "approachTolerance")) {
+      xml_.fail(e, "approachTolerance needs an approach=\"x y z\" direction");
+    }
     return goal;
   }
 
@@ -336,7 +479,7 @@ class ProblemReader {
     checkNames();
     checkObjects(root);
     checkSupport();
-    if (!workspaceElement_) xml_.fail(root, "the problem has no <Workspace min=.. max=..>");
+    if (!workspaceElement_) problem_.workspace = defaultWorkspace();
     for (const Query& query : problem_.queries) checkGoal(query.goal);
   }
 
@@ -360,7 +503,8 @@ class ProblemReader {
                                            target->name + "' is one already");
       target = &object;
     }
-    if (!target)
+    // Kautham's own files give no roles and need no target; ours name exactly one.
+    if (!target && rolesGiven_)
       xml_.fail(root, "the problem needs exactly one <Obstacle role=\"target\">, found none");
     for (const ObjectInstance& object : problem_.objects) {
       // A fixed object's joints would be frozen at zero; a moving one's would be dropped.
@@ -386,6 +530,16 @@ class ProblemReader {
           c.where, "support '" + c.supportObject + "' must name a fixed <Obstacle> (the table)");
   }
 
+  /// Without <Workspace> (Kautham's files): the scene's bounding box, with room around it.
+  Eigen::AlignedBox3d defaultWorkspace() const {
+    constexpr double kMargin = 0.25;  // m
+    Eigen::AlignedBox3d box = boundsAtHome(problem_.robot);
+    for (const ObjectInstance& object : problem_.objects) box.extend(boundsAtHome(object));
+    box.min().array() -= kMargin;
+    box.max().array() += kMargin;
+    return box;
+  }
+
   void checkGoal(const GoalRegion& goal) const {
     if (!problem_.robot.model.findLink(goal.link))
       throw InputError(goal.where,
@@ -405,6 +559,8 @@ class ProblemReader {
   Problem problem_;
   const XMLElement* robotElement_ = nullptr;
   const XMLElement* plannerElement_ = nullptr;
+  const XMLElement* controlsElement_ = nullptr;
+  bool rolesGiven_ = false;
   const XMLElement* workspaceElement_ = nullptr;
 };
 

@@ -10,8 +10,11 @@
 namespace kautham::physics {
 
 PhysicsPropagator::PhysicsPropagator(const ompl::control::SpaceInformationPtr& si,
-                                     std::shared_ptr<World> world)
-    : StatePropagator(si), world_(std::move(world)) {}
+                                     std::shared_ptr<World> world, ControlMapping mapping)
+    : StatePropagator(si),
+      world_(std::move(world)),
+      mapping_(std::move(mapping)),
+      velocities_(world_->actuators().size()) {}
 
 unsigned PhysicsPropagator::stepsFor(double duration) const {
   const double steps = std::round(duration / world_->settings().stepSize);
@@ -23,8 +26,10 @@ void PhysicsPropagator::propagate(const ompl::base::State* state,
                                   ompl::base::State* result) const {
   World& world = *world_;
   world.writeState(WorldStateSpace::values(state));
-  world.setJointVelocities(
-      control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+  mapping_.jointVelocities(
+      control->as<ompl::control::RealVectorControlSpace::ControlType>()->values,
+      velocities_.data());
+  world.setJointVelocities(velocities_.data());
   world.resetSolverSeed();
   world.takeEvents();
 

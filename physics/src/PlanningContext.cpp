@@ -9,18 +9,32 @@ namespace kautham::physics {
 
 namespace {
 
+/// One dimension per control of the robot's control set, each in [-1, 1] (ControlMapping).
 std::shared_ptr<ompl::control::RealVectorControlSpace> makeControlSpace(
-    const ompl::base::StateSpacePtr& space, const World& world) {
-  const auto& actuators = world.actuators();
-  auto controls = std::make_shared<ompl::control::RealVectorControlSpace>(
-      space, static_cast<unsigned>(actuators.size()));
-  ompl::base::RealVectorBounds bounds(static_cast<unsigned>(actuators.size()));
-  for (std::size_t i = 0; i < actuators.size(); ++i) {
-    bounds.setLow(i, -actuators[i].maxVelocity);
-    bounds.setHigh(i, actuators[i].maxVelocity);
-  }
+    const ompl::base::StateSpacePtr& space, std::size_t size) {
+  const auto dimension = static_cast<unsigned>(size);
+  auto controls = std::make_shared<ompl::control::RealVectorControlSpace>(space, dimension);
+  ompl::base::RealVectorBounds bounds(dimension);
+  bounds.setLow(-1.0);
+  bounds.setHigh(1.0);
   controls->setBounds(bounds);
   return controls;
+}
+
+GoalSpec makeGoalSpec(const core::Problem& problem, const core::GoalRegion& goal,
+                      const WorldLayout& layout) {
+  GoalSpec spec;
+  spec.position = problem.goalPosition(goal);
+  spec.tolerance = goal.tolerance;
+  spec.approach = problem.goalApproach(goal);
+  spec.approachTolerance = goal.approachTolerance;
+  if (goal.isConfiguration()) {
+    spec.joints = problem.jointValuesFromControls(goal.controls);
+    for (const JointInfo& joint : layout.joints)
+      spec.jointRanges.push_back(joint.limited ? joint.upper - joint.lower : 2.0 * M_PI);
+    spec.jointTolerance = goal.jointTolerance;
+  }
+  return spec;
 }
 
 void checkSettings(const PropagationSettings& settings, double physicsStep) {
@@ -47,9 +61,10 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
 
   space_ = std::make_shared<WorldStateSpace>(layout_, problem_.workspace);
 
-  si_ =
-      std::make_shared<ompl::control::SpaceInformation>(space_, makeControlSpace(space_, *world_));
-  propagator_ = std::make_shared<PhysicsPropagator>(si_, world_);
+  const ControlMapping mapping(problem_.robot.controls, layout_->joints);
+  si_ = std::make_shared<ompl::control::SpaceInformation>(space_,
+                                                          makeControlSpace(space_, mapping.size()));
+  propagator_ = std::make_shared<PhysicsPropagator>(si_, world_, mapping);
   validity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data());
   si_->setStatePropagator(propagator_);
   si_->setStateValidityChecker(validity_);
@@ -64,8 +79,8 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   startViolation_ = validity_->check(start_.data());
   start_[layout_->flagsIndex()] = 0.0;
 
-  goal_ = std::make_shared<WorkspaceGoal>(si_, layout_, problem_.goalPosition(query().goal),
-                                          query().goal.tolerance);
+  goal_ =
+      std::make_shared<WorkspaceGoal>(si_, layout_, makeGoalSpec(problem_, query().goal, *layout_));
   pdef_ = std::make_shared<ompl::base::ProblemDefinition>(si_);
   ompl::base::ScopedState<> start(space_);
   std::copy(start_.begin(), start_.end(), WorldStateSpace::values(start.get()));

@@ -36,7 +36,7 @@ ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& co
   si->freeState(next);
   result.finalGoalDistance = context.goal().distance(result.finalState().data());
   result.reachedGoal = result.firstViolation == Violation::None &&
-                       result.finalGoalDistance <= context.goal().getThreshold();
+                       context.goal().reached(result.finalState().data());
   return result;
 }
 

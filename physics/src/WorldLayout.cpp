@@ -51,4 +51,9 @@ Eigen::Vector3d WorldLayout::goalLinkPosition(const double* state) const {
   return position(state, body) + orientation(state, body).normalized() * offset;
 }
 
+Eigen::Matrix3d WorldLayout::goalLinkOrientation(const double* state) const {
+  const std::size_t body = static_cast<std::size_t>(goalBody);
+  return orientation(state, body).normalized().toRotationMatrix() * goalLinkInBody.linear();
+}
+
 }  // namespace kautham::physics

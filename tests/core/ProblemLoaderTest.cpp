@@ -442,7 +442,6 @@ const MalformedCase kMalformedCases[] = {
     {"two_targets", nullptr, 19, "a second target 'can2'"},
     {"init_wrong_count", nullptr, 24, "<Init> needs 3 normalized values"},
     {"init_out_of_range", nullptr, 24, "each in [0, 1]"},
-    {"missing_workspace", nullptr, 3, "the problem has no <Workspace"},
     {"no_robot", nullptr, 3, "the problem has no <Robot>"},
     {"support_not_fixed", nullptr, 20, "support 'can' must name a fixed <Obstacle>"},
 };

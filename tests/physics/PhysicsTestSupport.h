@@ -27,14 +27,20 @@ class ContextFixture {
     throw std::runtime_error("no body named " + name);
   }
 
-  /// Applies joint velocities for `steps` propagation steps, one propagate call each, and
-  /// returns the first violation met (stopping there), or Violation::None.
+  /// Applies joint velocities (through the controls that ask for them) for `steps`
+  /// propagation steps, one propagate call each, and returns the first violation met
+  /// (stopping there), or Violation::None.
   physics::Violation drive(const std::vector<double>& velocities, unsigned steps) {
+    return driveControls(context.propagator().mapping().controlsFor(velocities), steps);
+  }
+
+  /// As drive(), with the planner's normalized controls.
+  physics::Violation driveControls(const std::vector<double>& controls, unsigned steps) {
     const auto& si = context.spaceInformation();
     ompl::base::State* from = si->allocState();
     ompl::base::State* to = si->allocState();
     ompl::control::Control* control = si->allocControl();
-    std::copy(velocities.begin(), velocities.end(),
+    std::copy(controls.begin(), controls.end(),
               control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
     physics::Violation violation = physics::Violation::None;
     for (unsigned i = 0; i < steps && violation == physics::Violation::None; ++i) {

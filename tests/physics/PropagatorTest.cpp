@@ -64,7 +64,7 @@ TEST(PropagatorTest, VelocitiesBeyondTheJointLimitsAreClamped) {
 
 TEST(ReplayTest, ReplayingControlsTwiceGivesTheSameFrames) {
   ContextFixture scene("problems/pusher_cans_5.xml");
-  const std::vector<ControlStep> controls = {{{0.0, 0.25, 0.0}, 10}, {{0.2, 0.1, 0.3}, 6}};
+  const std::vector<ControlStep> controls = {{{0.0, 1.0, 0.0}, 10}, {{0.8, 0.4, 0.6}, 6}};
   const ReplayResult first = replay(scene.context, controls);
   const ReplayResult second = replay(scene.context, controls);
   ASSERT_EQ(first.frames.size(), 17u);  // the start and one frame per propagation step
@@ -78,9 +78,9 @@ TEST(ReplayTest, ReplayingControlsTwiceGivesTheSameFrames) {
 TEST(ReplayTest, FramesRecordWhatTheRobotTouched) {
   ContextFixture scene("tests/data/pusher_wall.xml");
   const int can = static_cast<int>(scene.body("can1"));
-  // Over to the can (x = 0.35), then forward into it.
-  const ReplayResult result =
-      replay(scene.context, {{{0.25, 0.0, 0.0}, 28}, {{0.0, 0.2, 0.0}, 16}});
+  // Over to the can (x = 0.35), then forward into it. Controls are fractions of the joints'
+  // velocity limits (0.25 m/s for x and y).
+  const ReplayResult result = replay(scene.context, {{{1.0, 0.0, 0.0}, 28}, {{0.0, 0.8, 0.0}, 16}});
   ASSERT_EQ(result.firstViolation, Violation::None);
   std::size_t touching = 0;
   for (std::size_t f = 0; f < result.frames.size(); ++f) {
@@ -95,7 +95,7 @@ TEST(ReplayTest, FramesRecordWhatTheRobotTouched) {
 
 TEST(ReplayTest, ReplayStopsAtTheFirstViolation) {
   ContextFixture scene("tests/data/pusher_wall.xml");
-  const ReplayResult result = replay(scene.context, {{{0.0, 0.25, 0.0}, 40}});
+  const ReplayResult result = replay(scene.context, {{{0.0, 1.0, 0.0}, 40}});
   EXPECT_EQ(result.firstViolation, Violation::RobotTouchedFixed);
   EXPECT_LT(result.frames.size(), 41u);
   EXPECT_FALSE(result.reachedGoal);

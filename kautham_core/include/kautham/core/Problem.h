@@ -7,6 +7,7 @@
 
 #include <Eigen/Geometry>
 
+#include "kautham/core/ControlSet.h"
 #include "kautham/core/InputError.h"
 #include "kautham/core/KinematicModel.h"
 #include "kautham/core/Pose.h"
@@ -33,9 +34,23 @@ struct ModelInstance {
   SourceLocation where;
 };
 
+/// Kautham's <Limits name="X|Y|Z" min max>: the robot's base slides along an axis of its
+/// <Home> frame (a prismatic joint added in front of the URDF's root link).
+struct BaseAxisLimits {
+  std::string axis;  ///< "X", "Y" or "Z"
+  double min = 0.0;
+  double max = 0.0;
+  double velocity = 0.5;  ///< m/s (an addition of this project; Kautham has none)
+  double effort = 100.0;  ///< N
+  SourceLocation where;
+};
+
 struct RobotInstance : ModelInstance {
-  /// Initial values of the movable joints, in the order of KinematicModel::movableJoints().
+  /// Joint values when a query gives no <Init>, in the order of movableJoints().
   std::vector<double> initialJoints;
+  std::vector<BaseAxisLimits> baseAxes;  ///< mobile-base joints added to `model`, if any
+  /// How the planner's controls move the joints (from <Controls>, or one per joint).
+  ControlSet controls;
 };
 
 struct ObjectInstance : ModelInstance {
@@ -73,20 +88,29 @@ struct KinodynamicLimits {
   SourceLocation where;
 };
 
-/// A pre-grasp region: a robot link's origin within `tolerance` of a point given in the frame
-/// of `relativeTo` (an object's home pose; the world when empty).
+/// The goal of a query. Either a pre-grasp region: a robot link's origin within `tolerance`
+/// of a point given in the frame of `relativeTo` (an object's home pose; the world when empty),
+/// optionally with the link's +z axis within `approachTolerance` of the `approach` direction;
+/// or (Kautham's <Goal>) a configuration: normalized controls, reached when the normalized
+/// joint values are within `jointTolerance` (Euclidean) of it.
 struct GoalRegion {
-  std::string link;
+  std::string link;  ///< for a configuration goal: the robot's tip link (projection, pictures)
   std::string relativeTo;
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   double tolerance = 0.02;
+  std::optional<Eigen::Vector3d> approach;  ///< unit vector, in the frame of `relativeTo`
+  double approachTolerance = 0.35;          ///< rad
+  std::vector<double> controls;             ///< configuration goal (normalized controls)
+  double jointTolerance = 0.05;
   SourceLocation where;
+
+  bool isConfiguration() const { return !controls.empty(); }
 };
 
 struct Query {
   std::string name;
-  /// Normalized initial joint values in [0,1] (Kautham controls); empty: every joint at 0,
-  /// clamped into its limits.
+  /// Normalized initial controls in [0,1] (Kautham's <Init>, one per control); empty: every
+  /// joint at 0, clamped into its limits.
   std::vector<double> init;
   GoalRegion goal;
   SourceLocation where;
@@ -120,12 +144,18 @@ struct Problem {
 
   const ObjectInstance& target() const;
   std::optional<int> findObject(const std::string& objectName) const;
-  /// World position of the goal region's centre.
+  /// World position of the goal region's centre (of the goal link, for a configuration goal).
   Eigen::Vector3d goalPosition(const GoalRegion& goal) const;
+  /// World direction the goal link's +z axis must point along, if the goal constrains it.
+  std::optional<Eigen::Vector3d> goalApproach(const GoalRegion& goal) const;
   /// Joint values of the robot at the start of a query.
   std::vector<double> initialJointValues(const Query& query) const;
+  /// Joint values reached by normalized controls (Kautham's mapping through the control set).
+  std::vector<double> jointValuesFromControls(const std::vector<double>& controls) const;
+  bool hasTarget() const;
   /// The fixed object that movable objects must stay on: the one named by <Interaction
-  /// support>, else the highest fixed object under the target; none if nothing is under it.
+  /// support>, else the highest fixed object under the target; none if nothing is under it
+  /// (or there is no target).
   std::optional<int> supportObject() const;
 };
 

@@ -6,6 +6,7 @@
 #include <ompl/control/SpaceInformation.h>
 #include <ompl/control/StatePropagator.h>
 
+#include "kautham/physics/ControlMapping.h"
 #include "kautham/physics/World.h"
 
 namespace kautham::physics {
@@ -17,12 +18,14 @@ struct PropagationCounters {
 };
 
 /// OMPL state propagator that runs the ODE world: writes the start state into the world,
-/// sets the joint velocity targets of the control, and steps for the given duration.
+/// sets the joint velocity targets the control maps to (ControlMapping), and steps for the
+/// given duration.
 /// The result is a function of (state, control, duration) only, whatever ran before:
 /// the full state is written and ODE's solver seed is reset on every call.
 class PhysicsPropagator : public ompl::control::StatePropagator {
  public:
-  PhysicsPropagator(const ompl::control::SpaceInformationPtr& si, std::shared_ptr<World> world);
+  PhysicsPropagator(const ompl::control::SpaceInformationPtr& si, std::shared_ptr<World> world,
+                    ControlMapping mapping);
 
   void propagate(const ompl::base::State* state, const ompl::control::Control* control,
                  double duration, ompl::base::State* result) const override;
@@ -31,9 +34,12 @@ class PhysicsPropagator : public ompl::control::StatePropagator {
   /// Physics steps that make up `duration` seconds (at least one).
   unsigned stepsFor(double duration) const;
   const PropagationCounters& counters() const { return counters_; }
+  const ControlMapping& mapping() const { return mapping_; }
 
  private:
   std::shared_ptr<World> world_;
+  ControlMapping mapping_;
+  mutable std::vector<double> velocities_;  ///< scratch: one per joint
   mutable PropagationCounters counters_;
 };
 

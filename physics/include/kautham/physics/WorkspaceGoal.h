@@ -2,6 +2,8 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
+#include <vector>
 
 #include <ompl/base/goals/GoalRegion.h>
 
@@ -9,25 +11,48 @@
 
 namespace kautham::physics {
 
-/// A pre-grasp region: the goal link's origin within a tolerance of a point in the workspace.
+/// What a WorkspaceGoal asks for, in world terms (built from core::GoalRegion).
+struct GoalSpec {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< where the goal link's origin goes
+  double tolerance = 0.02;                             ///< m
+  std::optional<Eigen::Vector3d> approach;  ///< world direction for the goal link's +z axis
+  double approachTolerance = 0.35;          ///< rad
+  std::vector<double> joints;               ///< a configuration goal's joint values (else empty)
+  std::vector<double> jointRanges;          ///< per joint: what a normalized unit is
+  double jointTolerance = 0.05;             ///< normalized Euclidean distance
+};
+
+/// The goal of a query. A pre-grasp region: the goal link's origin within a tolerance of a
+/// point, and its +z axis (the approach direction of the gripper) within an angle of a
+/// direction when the goal gives one. Or, for Kautham's <Goal>, a configuration.
 class WorkspaceGoal : public ompl::base::GoalRegion {
  public:
   WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
-                std::shared_ptr<const WorldLayout> layout, const Eigen::Vector3d& position,
-                double tolerance);
+                std::shared_ptr<const WorldLayout> layout, GoalSpec spec);
 
-  /// Distance of the goal link to the goal point; also tracks the best seen, for progress.
+  /// How far a state is from the goal; also tracks the best seen, for progress. Metres for a
+  /// region (an approach error beyond its tolerance adds 0.1 m per radian), normalized joint
+  /// units for a configuration. The goal is reached at or below getThreshold().
   double distanceGoal(const ompl::base::State* state) const override;
+  /// Position and approach tolerances must both hold (the distance alone would trade them).
+  bool isSatisfied(const ompl::base::State* state, double* distance) const override;
   double distance(const double* state) const;
-  const Eigen::Vector3d& position() const { return position_; }
+  bool reached(const double* state) const;
+  /// Angle between the goal link's +z axis and the approach direction (0 without one).
+  double approachError(const double* state) const;
 
+  const Eigen::Vector3d& position() const { return spec_.position; }
+  const GoalSpec& spec() const { return spec_; }
   /// Smallest distanceGoal() since the last reset: how close the search has come.
   double bestDistance() const { return best_; }
   void resetBestDistance() { best_ = std::numeric_limits<double>::infinity(); }
 
  private:
+  double positionError(const double* state) const;
+  double jointError(const double* state) const;
+
   std::shared_ptr<const WorldLayout> layout_;
-  Eigen::Vector3d position_;
+  GoalSpec spec_;
   mutable double best_ = std::numeric_limits<double>::infinity();
 };
 

@@ -83,6 +83,8 @@ class WorldLayout {
 
   /// World position of the goal link's origin (the end effector).
   Eigen::Vector3d goalLinkPosition(const double* state) const;
+  /// World orientation of the goal link (its +z axis is the gripper's approach direction).
+  Eigen::Matrix3d goalLinkOrientation(const double* state) const;
   /// World pose of a body's main link.
   Eigen::Isometry3d linkPose(const double* state, std::size_t body) const;
 };
