@@ -45,6 +45,28 @@ void printRobot(const core::RobotInstance& robot) {
   }
 }
 
+/// Every mesh of the robot and the objects: how big it is, and how it collides.
+void printMeshes(const core::Problem& problem) {
+  std::vector<std::string> meshes;
+  const auto describe = [&](const std::string& owner, const core::KinematicModel& model,
+                            bool moves) {
+    for (const core::Link& link : model.links)
+      for (const core::CollisionShape& c : link.collisions)
+        if (const auto* mesh = std::get_if<core::Mesh>(&c.shape))
+          meshes.push_back(fmt::format("{} ({}: {} vertices, {} triangles; {})", owner,
+                                       mesh->data->source.filename().string(),
+                                       mesh->vertices().size(), mesh->triangles().size(),
+                                       moves
+                                           ? fmt::format("collides as its convex hull of {} faces",
+                                                         mesh->hull().faces.size())
+                                           : std::string("collides as its triangles")));
+  };
+  describe(problem.robot.name, problem.robot.model, true);
+  for (const core::ObjectInstance& object : problem.objects)
+    describe(object.name, object.model, object.role != core::ObjectRole::Fixed);
+  if (!meshes.empty()) fmt::print("meshes      {}\n", fmt::join(meshes, "\n            "));
+}
+
 void printObjects(const core::Problem& problem) {
   std::map<core::ObjectRole, std::vector<std::string>> byRole;
   for (const core::ObjectInstance& object : problem.objects)
@@ -52,6 +74,7 @@ void printObjects(const core::Problem& problem) {
   for (auto role : {core::ObjectRole::Fixed, core::ObjectRole::Movable, core::ObjectRole::Target})
     fmt::print("{:<12}{}: {}\n", role == core::ObjectRole::Fixed ? "objects" : "",
                core::toString(role), fmt::join(byRole[role], ", "));
+  printMeshes(problem);
   std::vector<std::string> uncertain;
   for (const core::ObjectInstance& o : problem.objects)
     if (o.uncertainty.x > 0 || o.uncertainty.y > 0 || o.uncertainty.yaw > 0)

@@ -59,6 +59,21 @@ json shapeJson(const core::Shape& shape) {
     json operator()(const core::Sphere& s) const {
       return {{"type", "sphere"}, {"radius", s.radius}};
     }
+    /// The mesh as loaded (not its hull), flat arrays, coordinates rounded to 0.1 mm: a viewer
+    /// draws it, and it must stay small.
+    json operator()(const core::Mesh& m) const {
+      std::vector<double> vertices;
+      vertices.reserve(3 * m.vertices().size());
+      for (const Eigen::Vector3d& v : m.vertices())
+        for (int k = 0; k < 3; ++k) vertices.push_back(std::round(v[k] * 1e4) / 1e4);
+      std::vector<int> triangles;
+      triangles.reserve(3 * m.triangles().size());
+      for (const auto& t : m.triangles()) triangles.insert(triangles.end(), t.begin(), t.end());
+      return {{"type", "mesh"},
+              {"file", m.data->source.filename().string()},
+              {"vertices", vertices},
+              {"triangles", triangles}};
+    }
   };
   return std::visit(Describe{}, shape);
 }

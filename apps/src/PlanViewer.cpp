@@ -1,5 +1,6 @@
 #include "PlanViewer.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -59,6 +60,24 @@ bool isPositiveNumber(const nlohmann::json& object, const char* key) {
   return object.contains(key) && object[key].is_number() && object[key].get<double>() > 0.0;
 }
 
+/// A mesh shape: "vertices" x, y, z flat, "triangles" three vertex indices each, flat.
+template <typename Fail>
+void checkMesh(const nlohmann::json& shape, const Fail& fail) {
+  const auto& vertices = shape.contains("vertices") ? shape["vertices"] : nlohmann::json();
+  const auto& triangles = shape.contains("triangles") ? shape["triangles"] : nlohmann::json();
+  if (!vertices.is_array() || vertices.size() < 9 || vertices.size() % 3 != 0 ||
+      !std::all_of(vertices.begin(), vertices.end(), [](const auto& v) { return v.is_number(); }))
+    fail("is a mesh without \"vertices\" (x, y, z of at least three points, flat)");
+  const std::size_t count = vertices.size() / 3;
+  if (!triangles.is_array() || triangles.empty() || triangles.size() % 3 != 0 ||
+      !std::all_of(triangles.begin(), triangles.end(), [count](const auto& i) {
+        return i.is_number_integer() && i.template get<std::int64_t>() >= 0 &&
+               static_cast<std::size_t>(i.template get<std::int64_t>()) < count;
+      }))
+    fail(fmt::format("is a mesh without \"triangles\" (three indices below {} per triangle, flat)",
+                     count));
+}
+
 void checkShape(const nlohmann::json& shape, std::size_t index, std::size_t bodies,
                 const std::string& source) {
   const auto fail = [&](const std::string& what) {
@@ -76,8 +95,10 @@ void checkShape(const nlohmann::json& shape, std::size_t index, std::size_t bodi
       fail("is a cylinder without a positive \"radius\" and \"length\"");
   } else if (type == "sphere") {
     if (!isPositiveNumber(shape, "radius")) fail("is a sphere without a positive \"radius\"");
+  } else if (type == "mesh") {
+    checkMesh(shape, fail);
   } else {
-    fail(fmt::format("has type '{}'; the viewer shows box, cylinder and sphere", type));
+    fail(fmt::format("has type '{}'; the viewer shows box, cylinder, sphere and mesh", type));
   }
   if (!shape.contains("pose") || !isPose(shape["pose"]))
     fail("has no \"pose\" of seven numbers [x, y, z, qw, qx, qy, qz]");

@@ -46,10 +46,47 @@ Eigen::Isometry3d startPose(const json& plan, const json& shape) {
   return poseOf(plan["frames"][0]["poses"][shape["body"].get<std::size_t>()]) * local;
 }
 
+/// A mesh's outline seen from above: the convex hull of its vertices projected on the xy plane,
+/// counter-clockwise (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> meshOutline(const json& shape, const Eigen::Isometry3d& pose) {
+  const json& v = shape["vertices"];
+  std::vector<Eigen::Vector2d> points;
+  for (std::size_t i = 0; i + 2 < v.size(); i += 3)
+    points.push_back(
+        (pose * Eigen::Vector3d(v[i].get<double>(), v[i + 1].get<double>(), v[i + 2].get<double>()))
+            .head<2>());
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (points.size() < 3) return points;
+  const auto turnsLeft = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a,
+                            const Eigen::Vector2d& b) {
+    return (a - o).x() * (b - o).y() - (a - o).y() * (b - o).x() > 0.0;
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {  // lower chain
+    while (k >= 2 && !turnsLeft(hull[k - 2], hull[k - 1], points[i])) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && !turnsLeft(hull[k - 2], hull[k - 1], points[i])) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // the last point is the first
+  return hull;
+}
+
 /// The shape's outline seen from above, as an SVG element in world metres.
 std::string outline(const json& shape, const Eigen::Isometry3d& pose, const std::string& style) {
   const Eigen::Vector3d c = pose.translation();
   const std::string type = shape["type"];
+  if (type == "mesh") {
+    std::string points;
+    for (const Eigen::Vector2d& p : meshOutline(shape, pose))
+      points += fmt::format("{:.4f},{:.4f} ", p.x(), p.y());
+    return fmt::format(R"svg(<polygon points="{}" {}/>)svg", points, style);
+  }
   if (type != "box") {
     const double r = shape["radius"];
     return fmt::format(R"svg(<circle cx="{:.4f}" cy="{:.4f}" r="{:.4f}" {}/>)svg", c.x(), c.y(), r,
@@ -75,6 +112,10 @@ Bounds drawingBounds(const json& plan) {
   for (const json& shape : plan["shapes"]) {
     if (shape["role"] == "robot") continue;
     const Eigen::Isometry3d pose = startPose(plan, shape);
+    if (shape["type"] == "mesh") {
+      for (const Eigen::Vector2d& p : meshOutline(shape, pose)) bounds.add(p.x(), p.y());
+      continue;
+    }
     Eigen::Vector2d half = Eigen::Vector2d::Constant(shape.value("radius", 0.0));
     if (shape["type"] == "box") {  // the turned rectangle's extent, as for any bounding box
       const Eigen::Vector2d size(shape["size"][0].get<double>(), shape["size"][1].get<double>());

@@ -9,6 +9,7 @@
 #include <urdf_parser/urdf_parser.h>
 
 #include "XmlReader.h"
+#include "kautham/core/MeshLoader.h"
 
 namespace kautham::core {
 
@@ -33,7 +34,11 @@ int lineOf(const tinyxml2::XMLElement& robot, const char* tag, const std::string
 class UrdfConverter {
  public:
   UrdfConverter(const XmlReader& xml, const urdf::ModelInterface& urdf, double scale)
-      : xml_(xml), urdf_(urdf), scale_(scale), robot_(xml.root("robot")) {}
+      : xml_(xml),
+        urdf_(urdf),
+        scale_(scale),
+        robot_(xml.root("robot")),
+        folder_(xml.file().parent_path()) {}
 
   KinematicModel convert() {
     KinematicModel model;
@@ -69,14 +74,15 @@ class UrdfConverter {
           in.izz;
       link.inertial.inertia *= scale_ * scale_;
     }
-    for (const auto& collision : source.collision_array)
-      if (collision && collision->geometry)
-        link.collisions.push_back({convertShape(*collision->geometry, source.name),
+    for (std::size_t c = 0; c < source.collision_array.size(); ++c)
+      if (const auto& collision = source.collision_array[c]; collision && collision->geometry)
+        link.collisions.push_back({convertShape(*collision->geometry, source.name, c),
                                    toIsometry(collision->origin, scale_)});
     return link;
   }
 
-  Shape convertShape(const urdf::Geometry& geometry, const std::string& linkName) const {
+  Shape convertShape(const urdf::Geometry& geometry, const std::string& linkName,
+                     std::size_t collisionIndex) const {
     switch (geometry.type) {
       case urdf::Geometry::BOX: {
         const auto& box = static_cast<const urdf::Box&>(geometry);
@@ -91,11 +97,65 @@ class UrdfConverter {
         return requirePositive(Sphere{scale_ * static_cast<const urdf::Sphere&>(geometry).radius},
                                linkName);
       case urdf::Geometry::MESH:
-        break;
+        return convertMesh(static_cast<const urdf::Mesh&>(geometry), linkName, collisionIndex);
     }
-    fail("link", linkName,
-         "link '" + linkName +
-             "': mesh collision geometry is not supported yet; use box, cylinder or sphere");
+    fail("link", linkName, "link '" + linkName + "': unknown collision geometry");
+  }
+
+  /// Line of the <mesh> element of the link's collisionIndex-th <collision> (else the link's).
+  int meshLine(const std::string& linkName, std::size_t collisionIndex) const {
+    for (auto* link = robot_.FirstChildElement("link"); link;
+         link = link->NextSiblingElement("link")) {
+      if (const char* n = link->Attribute("name"); !n || linkName != n) continue;
+      auto* collision = link->FirstChildElement("collision");
+      for (std::size_t i = 0; collision && i < collisionIndex; ++i)
+        collision = collision->NextSiblingElement("collision");
+      const auto* geometry = collision ? collision->FirstChildElement("geometry") : nullptr;
+      const auto* mesh = geometry ? geometry->FirstChildElement("mesh") : nullptr;
+      return mesh ? mesh->GetLineNum() : link->GetLineNum();
+    }
+    return 0;
+  }
+
+  /// A mesh file, found relative to the URDF's folder, scaled, with its convex hull.
+  Shape convertMesh(const urdf::Mesh& source, const std::string& linkName,
+                    std::size_t collisionIndex) const {
+    const SourceLocation where{xml_.file(), meshLine(linkName, collisionIndex)};
+    const std::string& name = source.filename;
+    const std::string prefix = "link '" + linkName + "': mesh '" + name + "'";
+    if (name.rfind("package://", 0) == 0)
+      throw InputError(where, prefix +
+                                  ": package:// paths need ROS to resolve; write the path "
+                                  "relative to the URDF's folder instead (e.g. meshes/x.stl)");
+    std::filesystem::path path = name.rfind("file://", 0) == 0 ? name.substr(7) : name;
+    if (name.find("://") != std::string::npos && name.rfind("file://", 0) != 0)
+      throw InputError(where, prefix +
+                                  ": only plain file paths are supported, relative to the "
+                                  "URDF's folder");
+    if (path.empty()) throw InputError(where, "link '" + linkName + "': mesh without a filename");
+    if (path.is_relative()) path = folder_ / path;
+    std::error_code ignored;
+    if (!std::filesystem::is_regular_file(path, ignored))
+      throw InputError(where, prefix + ": file not found (looked for '" + path.string() + "')");
+    const Eigen::Vector3d scale =
+        scale_ * Eigen::Vector3d(source.scale.x, source.scale.y, source.scale.z);
+    if (!(scale.array() > 0.0).all() || !scale.allFinite())
+      throw InputError(where, prefix + ": scale must be three positive numbers");
+
+    auto data = std::make_shared<Mesh::Data>();
+    data->source = path;
+    try {
+      TriangleMesh mesh = loadMesh(path, scale);
+      data->vertices = std::move(mesh.vertices);
+      data->triangles = std::move(mesh.triangles);
+      data->hull = convexHull(data->vertices);
+    } catch (const MeshError& e) {
+      throw InputError(where, prefix + ": " + e.what());
+    } catch (const DegenerateHullError& e) {
+      throw InputError(where,
+                       prefix + " has no volume, so it cannot be a collision body: " + e.what());
+    }
+    return Mesh{std::move(data)};
   }
 
   template <typename S>
@@ -163,6 +223,7 @@ class UrdfConverter {
   const urdf::ModelInterface& urdf_;
   double scale_;
   const tinyxml2::XMLElement& robot_;
+  std::filesystem::path folder_;  ///< mesh paths are relative to it
 };
 
 std::string readWholeFile(const std::filesystem::path& file) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "GeomTag.h"
+#include "OdeMeshData.h"
 
 namespace kautham::physics {
 
@@ -13,6 +14,7 @@ void World::destroy() {
   // Every ODE object goes before the library may close (ode_ is released after this).
   if (contactGroup_) dJointGroupDestroy(contactGroup_);
   if (space_) dSpaceDestroy(space_);  // destroys its geoms too (cleanup mode is on)
+  meshData_.clear();                  // after the geoms that point into it
   if (world_) dWorldDestroy(world_);  // destroys bodies and joints
   contactGroup_ = nullptr;
   space_ = nullptr;
@@ -133,8 +135,8 @@ void World::collide(dGeomID a, dGeomID b) {
   const GeomTag& tagB = *static_cast<const GeomTag*>(dGeomGetData(b));
   if (tagA.isRobot() && tagB.isRobot()) return;  // no self-collision (docs/problem-format.md)
 
-  const int count =
-      dCollide(a, b, settings_.maxContacts, &contactBuffer_[0].geom, sizeof(dContact));
+  const int count = usableContacts(
+      dCollide(a, b, settings_.maxContacts, &contactBuffer_[0].geom, sizeof(dContact)));
   if (count == 0) return;
   events_ |= contactEvent(tagA, tagB);
   if (tagA.isRobot() != tagB.isRobot()) {
@@ -150,6 +152,22 @@ void World::collide(dGeomID a, dGeomID b) {
     contact.surface.soft_cfm = settings_.cfm;
     dJointAttach(dJointCreateContact(world_, contactGroup_, &contact), bodyA, bodyB);
   }
+}
+
+int World::usableContacts(int count) {
+  // libccd's colliders (convex hulls against anything) report shapes that just touch as a
+  // contact of depth 0 with a zero normal; a contact joint along it makes the solver's result
+  // NaN. Such contacts carry no information: drop them.
+  int kept = 0;
+  for (int i = 0; i < count; ++i) {
+    const dContactGeom& g = contactBuffer_[i].geom;
+    const double length = std::sqrt(g.normal[0] * g.normal[0] + g.normal[1] * g.normal[1] +
+                                    g.normal[2] * g.normal[2]);
+    if (!(std::abs(length - 1.0) < 1e-3) || !std::isfinite(g.depth)) continue;
+    if (kept != i) contactBuffer_[kept].geom = g;
+    ++kept;
+  }
+  return kept;
 }
 
 void World::recordOverlap(const GeomTag& a, const GeomTag& b, int contacts) {

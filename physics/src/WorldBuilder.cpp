@@ -1,10 +1,12 @@
 // Construction of the ODE world from a loaded problem.
 
 #include <cmath>
+#include <map>
 
 #include <Eigen/Eigenvalues>
 
 #include "GeomTag.h"
+#include "OdeMeshData.h"
 #include "kautham/physics/World.h"
 
 namespace kautham::physics {
@@ -20,7 +22,7 @@ void toOdeRotation(const Eigen::Matrix3d& rotation, dMatrix3 out) {
   }
 }
 
-dGeomID createGeom(const core::Shape& shape) {
+dGeomID createPrimitive(const core::Shape& shape) {
   struct Create {
     dGeomID operator()(const core::Box& b) const {
       return dCreateBox(nullptr, b.size.x(), b.size.y(), b.size.z());
@@ -29,6 +31,7 @@ dGeomID createGeom(const core::Shape& shape) {
       return dCreateCylinder(nullptr, c.radius, c.length);
     }
     dGeomID operator()(const core::Sphere& s) const { return dCreateSphere(nullptr, s.radius); }
+    dGeomID operator()(const core::Mesh&) const { return nullptr; }  // see Builder::createGeom
   };
   return std::visit(Create{}, shape);
 }
@@ -152,7 +155,7 @@ class World::Builder {
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
       for (const core::CollisionShape& collision : model.links[link].collisions) {
-        dGeomID geom = createGeom(collision.shape);
+        dGeomID geom = createGeom(collision.shape, body != nullptr);
         dSpaceAdd(world_.space_, geom);
         dGeomSetData(geom, tag);
         dGeomSetCategoryBits(geom, tag->category());
@@ -174,6 +177,19 @@ class World::Builder {
         }
       }
     }
+  }
+
+  /// Meshes collide as their convex hull on bodies, as their triangles when fixed: ODE's
+  /// trimesh-trimesh contacts are slow and unstable, and a fixed trimesh never meets another.
+  dGeomID createGeom(const core::Shape& shape, bool onBody) {
+    const auto* mesh = std::get_if<core::Mesh>(&shape);
+    if (!mesh) return createPrimitive(shape);
+    std::shared_ptr<OdeMeshData>& data = meshData_[mesh->data.get()];
+    if (!data) {
+      data = std::make_shared<OdeMeshData>(*mesh);
+      world_.meshData_.push_back(data);
+    }
+    return onBody ? data->createConvex() : data->createTriMesh();
   }
 
   /// Creates the body of a group whose top link is at `topPose`; returns it and records it.
@@ -315,6 +331,7 @@ class World::Builder {
 
   World& world_;
   const core::Problem& problem_;
+  std::map<const core::Mesh::Data*, std::shared_ptr<OdeMeshData>> meshData_;  ///< one per mesh
 };
 
 World::World(const core::Problem& problem, const core::Query& query)

@@ -86,6 +86,12 @@ bool WorldValidityChecker::onSupport(const Eigen::Vector3d& position) const {
     if (const auto* box = std::get_if<core::Box>(&shape.shape)) {
       if (std::abs(local.x()) <= box->size.x() / 2 && std::abs(local.y()) <= box->size.y() / 2)
         return true;
+    } else if (std::holds_alternative<core::Mesh>(shape.shape)) {
+      // A mesh support: its own bounding box, seen from above.
+      const Eigen::AlignedBox3d b = core::boundingBox(shape.shape, Eigen::Isometry3d::Identity());
+      const Eigen::Array2d xy = local.head<2>().array();
+      if ((xy >= b.min().head<2>().array()).all() && (xy <= b.max().head<2>().array()).all())
+        return true;
     } else {
       const double radius = std::holds_alternative<core::Cylinder>(shape.shape)
                                 ? std::get<core::Cylinder>(shape.shape).radius

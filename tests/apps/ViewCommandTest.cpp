@@ -4,6 +4,7 @@
 
 #include <sys/wait.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -131,15 +132,16 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   const std::string verdict = title[1];
   ASSERT_TRUE(std::regex_match(
       verdict, pass,
-      std::regex("SELFTEST PASS bodies=(\\d+) shapes=(\\d+) moved=(\\S+):([0-9.]+) contacts=(\\d+) "
-                 "beliefs=(\\d+)")))
+      std::regex("SELFTEST PASS bodies=(\\d+) shapes=(\\d+) meshes=(\\d+) moved=(\\S+):([0-9.]+) "
+                 "contacts=(\\d+) beliefs=(\\d+)")))
       << verdict;
   EXPECT_EQ(pass[1], "9");
   EXPECT_EQ(pass[2], "10");
-  EXPECT_EQ(pass[3].str().rfind("can", 0), 0u) << verdict;  // a pushed can
-  EXPECT_GT(std::stod(pass[4]), 0.01) << verdict;
-  EXPECT_GT(std::stoi(pass[5]), 0) << verdict;  // contact moments marked on the timeline
-  EXPECT_EQ(pass[6], "0") << verdict;           // KPIECE computes no belief
+  EXPECT_EQ(pass[3], "0");                                  // primitives only
+  EXPECT_EQ(pass[4].str().rfind("can", 0), 0u) << verdict;  // a pushed can
+  EXPECT_GT(std::stod(pass[5]), 0.01) << verdict;
+  EXPECT_GT(std::stoi(pass[6]), 0) << verdict;  // contact moments marked on the timeline
+  EXPECT_EQ(pass[7], "0") << verdict;           // KPIECE computes no belief
 
   const fs::path screenshot = folder / "plan.png";
   const CommandRun shot =
@@ -147,6 +149,64 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   ASSERT_EQ(shot.exitCode, 0) << readFile(folder / "chromium.log");
   ASSERT_TRUE(fs::exists(screenshot)) << readFile(folder / "chromium.log");
   EXPECT_EQ(readFile(screenshot).substr(0, 8), "\x89PNG\r\n\x1a\n");
+  EXPECT_GT(fs::file_size(screenshot), 10000u);
+}
+
+TEST_F(ViewCommandTest, MeshBodiesAreDrawnWithEveryTriangle) {
+  const std::string browser = findChromium();
+  ASSERT_FALSE(browser.empty()) << "Chromium is not installed";
+  const fs::path planFile = folder / "plan.json";
+  const fs::path page = folder / "plan.html";
+  const CommandRun plan = kautham("plan tests/data/pusher_bottle.xml --seed 1 -o '" +
+                                  planFile.string() + "' --html '" + page.string() + "'");
+  ASSERT_EQ(plan.exitCode, 0) << plan.output;
+
+  // The plan holds the meshes as loaded: the bottle's 290 vertices and 576 triangles.
+  const nlohmann::json json = nlohmann::json::parse(readFile(planFile));
+  std::size_t meshes = 0;
+  for (const auto& shape : json["shapes"]) {
+    if (shape["type"] != "mesh") continue;
+    ++meshes;
+    if (shape["owner"] == "bottle") {
+      EXPECT_EQ(shape["file"], "bottle.obj");
+      EXPECT_EQ(shape["vertices"].size(), 3u * 290u);
+      EXPECT_EQ(shape["triangles"].size(), 3u * 576u);
+    }
+  }
+  EXPECT_EQ(meshes, 2u);  // the bottle and the wine glass
+
+  // The tree picture outlines each mesh seen from above: a polygon around the bottle's base.
+  const fs::path svgFile = folder / "tree.svg";
+  ASSERT_EQ(kautham("view '" + planFile.string() + "' --tree '" + svgFile.string() + "'").exitCode,
+            0);
+  const std::string svg = readFile(svgFile);
+  std::smatch polygon;
+  ASSERT_TRUE(std::regex_search(svg, polygon, std::regex("<polygon points=\"([^\"]*)\"")));
+  std::istringstream corners(polygon[1].str());
+  std::string corner;
+  std::size_t count = 0;
+  while (corners >> corner) {
+    const double x = std::stod(corner), y = std::stod(corner.substr(corner.find(',') + 1));
+    EXPECT_NEAR(std::hypot(x - 0.0, y - 0.22), 0.04, 1e-3) << corner;  // the wine glass's rim
+    ++count;
+  }
+  EXPECT_EQ(count, 32u);  // the rim's 32 corners
+
+  const CommandRun dom = chromium(browser, folder, page, "#selftest", "--dump-dom");
+  ASSERT_EQ(dom.exitCode, 0) << readFile(folder / "chromium.log");
+  std::smatch pass;
+  ASSERT_TRUE(std::regex_search(
+      dom.output, pass,
+      std::regex("<title>SELFTEST PASS bodies=(\\d+) shapes=(\\d+) meshes=(\\d+) moved=(\\S+):")))
+      << dom.output.substr(0, 2000);
+  EXPECT_EQ(pass[1], "9");  // 3 robot links, the bottle, 4 cans, the wine glass
+  EXPECT_EQ(pass[2], "10");
+  EXPECT_EQ(pass[3], "2");  // both drawn with every triangle of the plan
+
+  const fs::path screenshot = folder / "mesh.png";
+  const CommandRun shot =
+      chromium(browser, folder, page, "#frame=0", "--screenshot='" + screenshot.string() + "'");
+  ASSERT_EQ(shot.exitCode, 0) << readFile(folder / "chromium.log");
   EXPECT_GT(fs::file_size(screenshot), 10000u);
 }
 
@@ -202,6 +262,17 @@ TEST_F(ViewCommandTest, MalformedPlansExitTwoNamingTheFile) {
                                  "pose": [0, 0, 0, 1, 0, 0, 0]}],
                      "frames": [{"t": 0, "poses": [[0, 0, 0, 1, 0, 0, 0]]}]})",
                  "one pose per body");
+  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [],
+                     "shapes": [{"type": "mesh", "vertices": [0, 0, 0, 1, 0, 0, 0, 1, 0],
+                                 "triangles": [0, 1, 3], "body": null,
+                                 "pose": [0, 0, 0, 1, 0, 0, 0]}],
+                     "frames": [{"t": 0, "poses": []}]})",
+                 "shapes[0] is a mesh without \"triangles\" (three indices below 3");
+  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [],
+                     "shapes": [{"type": "mesh", "triangles": [0, 1, 2], "body": null,
+                                 "pose": [0, 0, 0, 1, 0, 0, 0]}],
+                     "frames": [{"t": 0, "poses": []}]})",
+                 "shapes[0] is a mesh without \"vertices\"");
 }
 
 TEST_F(ViewCommandTest, TreePictureDrawsEveryTreeStateAndTheGoal) {

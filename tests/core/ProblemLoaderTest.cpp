@@ -432,7 +432,16 @@ const MalformedCase kMalformedCases[] = {
     {"unknown_role", nullptr, 11, "unknown role 'goal'; expected fixed, movable or target"},
     {"missing_model", nullptr, 7, "model file 'objects/no_such_table.urdf' not found"},
     {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML"},
-    {"urdf_mesh", "mesh.urdf", 4, "mesh collision geometry is not supported"},
+    {"urdf_mesh", "mesh.urdf", 6, "link 'top': mesh 'table.stl': file not found (looked for"},
+    {"mesh_not_a_mesh", "mesh_not_a_mesh.urdf", 6,
+     "mesh 'meshes/not_a_mesh.stl': not a readable mesh"},
+    {"mesh_no_faces", "mesh_no_faces.urdf", 6,
+     "mesh 'meshes/no_faces.obj': the mesh holds no triangles"},
+    {"mesh_flat", "mesh_flat.urdf", 6,
+     "mesh 'meshes/flat.obj' has no volume, so it cannot be a collision body: the points are flat"},
+    {"mesh_package", "mesh_package.urdf", 6,
+     "mesh 'package://kautham/meshes/table.stl': package:// paths need ROS to resolve; write the "
+     "path relative to the URDF's folder"},
     {"fixed_with_joint", nullptr, 11, "object 'cabinet' has movable joints"},
     {"goal_unknown_link", nullptr, 25, "has no link 'hand'"},
     {"goal_unknown_object", nullptr, 25, "relativeTo names no object: 'cup'"},
@@ -486,7 +495,7 @@ TEST(MalformedProblems, UrdfErrorsAlsoNameTheProblemLineThatLoadedTheModel) {
     FAIL() << "loaded";
   } catch (const InputError& error) {
     const std::string message = error.what();
-    EXPECT_NE(message.find("mesh.urdf:4:"), std::string::npos) << message;
+    EXPECT_NE(message.find("mesh.urdf:6:"), std::string::npos) << message;
     EXPECT_NE(message.find("(model loaded at " + malformedFile("urdf_mesh.xml").string() + ":7)"),
               std::string::npos)
         << message;

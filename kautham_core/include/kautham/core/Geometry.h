@@ -1,9 +1,14 @@
 #pragma once
 
+#include <array>
+#include <filesystem>
+#include <memory>
 #include <variant>
 #include <vector>
 
 #include <Eigen/Geometry>
+
+#include "kautham/core/ConvexHull.h"
 
 namespace kautham::core {
 
@@ -18,7 +23,25 @@ struct Cylinder {
 struct Sphere {
   double radius;
 };
-using Shape = std::variant<Box, Cylinder, Sphere>;
+
+/// A triangle mesh in its link's frame (already scaled), with its convex hull: dynamic bodies
+/// collide as the hull, fixed ones as the triangles. The data is shared and never changes, so
+/// copying a Mesh is cheap.
+struct Mesh {
+  struct Data {
+    std::filesystem::path source;  ///< the mesh file it was loaded from
+    std::vector<Eigen::Vector3d> vertices;
+    std::vector<std::array<int, 3>> triangles;  ///< vertex indices, counter-clockwise outside
+    ConvexHull hull;                            ///< of the vertices
+  };
+  std::shared_ptr<const Data> data;
+
+  const std::vector<Eigen::Vector3d>& vertices() const { return data->vertices; }
+  const std::vector<std::array<int, 3>>& triangles() const { return data->triangles; }
+  const ConvexHull& hull() const { return data->hull; }
+};
+
+using Shape = std::variant<Box, Cylinder, Sphere, Mesh>;
 
 /// A primitive placed in the frame of the link it belongs to.
 struct CollisionShape {

@@ -12,7 +12,8 @@
 
 namespace kautham::physics {
 
-struct GeomTag;  // what an ODE geometry belongs to (private to the physics library)
+struct GeomTag;      // what an ODE geometry belongs to (private to the physics library)
+struct OdeMeshData;  // arrays that ODE's convex and trimesh geometries point into (private)
 
 /// Two things that interpenetrate deeper than a resting contact does.
 struct Overlap {
@@ -80,6 +81,8 @@ class World {
   void destroy();
   void restoreGeomOrder();
   void recordOverlap(const GeomTag& a, const GeomTag& b, int contacts);
+  /// Moves the first `count` contacts of the buffer that are usable to its front; their number.
+  int usableContacts(int count);
 
   std::shared_ptr<OdeLibrary> ode_;
   core::PhysicsSettings settings_;
@@ -91,6 +94,8 @@ class World {
   std::vector<dGeomID> dynamicGeoms_;  ///< geometries on bodies, in creation order
   std::vector<Actuator> actuators_;
   std::vector<std::unique_ptr<GeomTag>> tags_;
+  /// Mesh arrays referenced (not copied) by ODE's geometries: they live as long as the world.
+  std::vector<std::shared_ptr<OdeMeshData>> meshData_;
   std::vector<dContact> contactBuffer_;
   unsigned events_ = kNoEvent;
   std::vector<char> touched_;  ///< per body: touched by the robot since takeTouchedBodies()

@@ -1,0 +1,57 @@
+#include "kautham/core/MeshLoader.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+#include <assimp/Importer.hpp>
+
+namespace kautham::core {
+
+namespace {
+
+/// Appends the triangles of `node` and its children, placed by the accumulated transforms.
+void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent,
+             const Eigen::Vector3d& scale, TriangleMesh& out) {
+  const aiMatrix4x4 transform = parent * node.mTransformation;
+  for (unsigned m = 0; m < node.mNumMeshes; ++m) {
+    const aiMesh& mesh = *scene.mMeshes[node.mMeshes[m]];
+    if (!(mesh.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points or lines only
+    const int first = static_cast<int>(out.vertices.size());
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v) {
+      const aiVector3D p = transform * mesh.mVertices[v];
+      out.vertices.emplace_back(scale.x() * p.x, scale.y() * p.y, scale.z() * p.z);
+    }
+    for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+      const aiFace& face = mesh.mFaces[f];
+      if (face.mNumIndices != 3) continue;  // points and lines left by triangulation
+      out.triangles.push_back({first + static_cast<int>(face.mIndices[0]),
+                               first + static_cast<int>(face.mIndices[1]),
+                               first + static_cast<int>(face.mIndices[2])});
+    }
+  }
+  for (unsigned c = 0; c < node.mNumChildren; ++c)
+    collect(scene, *node.mChildren[c], transform, scale, out);
+}
+
+}  // namespace
+
+TriangleMesh loadMesh(const std::filesystem::path& file, const Eigen::Vector3d& scale) {
+  Assimp::Importer importer;
+  // URDF meshes are in the link's frame as written: keep COLLADA's z-up data as it is.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
+  // Only positions matter: without normals, texture coordinates and colours, the corners that
+  // the faces of STL and OBJ files repeat are joined into one vertex.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                              aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS |
+                                  aiComponent_COLORS | aiComponent_TEXCOORDS);
+  const aiScene* scene =
+      importer.ReadFile(file.string(), aiProcess_RemoveComponent | aiProcess_Triangulate |
+                                           aiProcess_JoinIdenticalVertices);
+  if (!scene || !scene->mRootNode)
+    throw MeshError(std::string("not a readable mesh (") + importer.GetErrorString() + ")");
+  TriangleMesh mesh;
+  collect(*scene, *scene->mRootNode, aiMatrix4x4(), scale, mesh);
+  if (mesh.triangles.empty()) throw MeshError("the mesh holds no triangles");
+  return mesh;
+}
+
+}  // namespace kautham::core
