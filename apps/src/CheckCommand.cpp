@@ -80,6 +80,11 @@ void printObjects(const core::Problem& problem) {
     if (o.uncertainty.x > 0 || o.uncertainty.y > 0 || o.uncertainty.yaw > 0)
       uncertain.push_back(fmt::format("{} (x {:g} m, y {:g} m, yaw {:g} rad)", o.name,
                                       o.uncertainty.x, o.uncertainty.y, o.uncertainty.yaw));
+  for (const core::ObjectInstance& o : problem.objects)
+    if (o.environment)
+      fmt::print("environment {} ({}, {:g} m voxels): {} occupied leaves merged into {} boxes\n",
+                 o.name, o.environment->octree.filename().string(), o.environment->resolution,
+                 o.environment->leaves, o.environment->boxes);
   fmt::print("uncertainty {}\n",
              uncertain.empty() ? "none" : fmt::format("{}", fmt::join(uncertain, ", ")));
 }

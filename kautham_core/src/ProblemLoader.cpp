@@ -9,6 +9,7 @@
 
 #include "MobileBase.h"
 #include "XmlReader.h"
+#include "kautham/core/OctomapEnvironment.h"
 #include "kautham/core/UrdfLoader.h"
 
 namespace kautham::core {
@@ -90,12 +91,14 @@ class ProblemReader {
       readWorkspace(e);
     else if (tag == "Planner")
       setPlannerElement(e);
+    else if (tag == "Environment")
+      readEnvironment(e);
     else if (tag == "Controls")
       setControlsElement(e);
     else
       xml_.fail(e, "unexpected element <" + tag +
-                       ">; expected Robot, Obstacle, Controls, Physics, Interaction, Kinodynamics, "
-                       "Workspace or Planner");
+                       ">; expected Robot, Obstacle, Environment, Controls, Physics, Interaction, "
+                       "Kinodynamics, Workspace or Planner");
   }
 
   fs::path findModel(const XMLElement& e, const std::string& relative) const {
@@ -224,6 +227,22 @@ class ProblemReader {
       object.uncertainty = {nonNegative(*u, "x"), nonNegative(*u, "y"), nonNegative(*u, "yaw")};
     }
     problem_.objects.push_back(std::move(object));
+  }
+
+  /// <Environment octomap name occupancy> with an optional <Home>: a sensed scene whose
+  /// occupied voxels become one fixed object (OctomapEnvironment.h).
+  void readEnvironment(const XMLElement& e) {
+    xml_.allowAttributes(e, {"octomap", "name", "occupancy"});
+    xml_.allowChildren(e, {"Home"});
+    xml_.atMostOnce(e, {"Home"});
+    const double threshold = xml_.number(e, "occupancy", kDefaultOccupancyThreshold);
+    if (!(threshold > 0.0 && threshold < 1.0))
+      xml_.fail(e, "occupancy is a probability threshold: it must be in (0, 1)");
+    const fs::path file = findModel(e, xml_.requiredText(e, "octomap"));
+    const OctomapBoxes boxes = readOctomapBoxes(file, threshold, xml_.at(e));
+    problem_.objects.push_back(
+        makeEnvironmentObject(xml_.optionalText(e, "name").value_or("environment"), file, boxes,
+                              readHome(e), xml_.at(e)));
   }
 
   double nonNegative(const XMLElement& e, const char* attribute, double fallback = 0.0) const {

@@ -124,6 +124,8 @@ unsigned World::takeEvents() {
 }
 
 void World::nearCallback(void* data, dGeomID a, dGeomID b) {
+  // A fixed object of many shapes has a space of its own (WorldBuilder): test inside it.
+  if (dGeomIsSpace(a) || dGeomIsSpace(b)) return dSpaceCollide2(a, b, data, &World::nearCallback);
   static_cast<World*>(data)->collide(a, b);
 }
 

@@ -149,14 +149,15 @@ class World::Builder {
   }
 
   void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top, GeomTag::Kind kind,
-                dBodyID body, const Eigen::Isometry3d& topInWorldOrBody, const std::string& name) {
+                dBodyID body, const Eigen::Isometry3d& topInWorldOrBody, const std::string& name,
+                dSpaceID space = nullptr) {
     const int bodyIndex = body ? static_cast<int>(world_.bodies_.size()) : -1;
     world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind, name, bodyIndex}));
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
       for (const core::CollisionShape& collision : model.links[link].collisions) {
         dGeomID geom = createGeom(collision.shape, body != nullptr);
-        dSpaceAdd(world_.space_, geom);
+        dSpaceAdd(space ? space : world_.space_, geom);
         dGeomSetData(geom, tag);
         dGeomSetCategoryBits(geom, tag->category());
         dGeomSetCollideBits(geom, tag->collidesWith());
@@ -320,13 +321,30 @@ class World::Builder {
     const int root = object.model.rootLink;
     const Eigen::Isometry3d home = object.home.isometry();
     if (object.role == core::ObjectRole::Fixed) {
-      addGeoms(object.model, groups, root, GeomTag::Kind::Fixed, nullptr, home, object.name);
+      addGeoms(object.model, groups, root, GeomTag::Kind::Fixed, nullptr, home, object.name,
+               spaceOfFixed(object.model));
       return;
     }
     const bool target = object.role == core::ObjectRole::Target;
     BodyInfo info{object.name, target ? BodyRole::Target : BodyRole::Movable, index, {}};
     createBody(object.model, groups, root, home, info,
                target ? GeomTag::Kind::Target : GeomTag::Kind::Movable);
+  }
+
+  /// A fixed object of many shapes (a sensed environment, docs/physics.md) gets a collision
+  /// space of its own inside the world's: the world's space sees it as one geometry, and a
+  /// moving geometry is tested against its shapes only when it is inside their bounding box.
+  dSpaceID spaceOfFixed(const KinematicModel& model) {
+    constexpr std::size_t kShapesForOwnSpace = 8;
+    std::size_t shapes = 0;
+    for (const core::Link& link : model.links) shapes += link.collisions.size();
+    if (shapes < kShapesForOwnSpace) return world_.space_;
+    dSpaceID space = dSimpleSpaceCreate(world_.space_);
+    dSpaceSetCleanup(space, 1);  // the world's space destroys it, and it its geometries
+    const GeomTag fixed{GeomTag::Kind::Fixed, "", -1};
+    dGeomSetCategoryBits(reinterpret_cast<dGeomID>(space), fixed.category());
+    dGeomSetCollideBits(reinterpret_cast<dGeomID>(space), fixed.collidesWith());
+    return space;
   }
 
   World& world_;

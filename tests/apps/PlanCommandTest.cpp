@@ -123,6 +123,17 @@ TEST_F(PlanCommandTest, CheckSummarisesAValidProblem) {
     EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
 }
 
+TEST_F(PlanCommandTest, CheckListsSensedEnvironments) {
+  const CommandRun run = kautham("check problems/pusher_shelf.xml");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  for (const char* text : {"fixed: table, shelf",
+                           "environment shelf (shelf.bt, 0.02 m voxels): 6870 occupied leaves "
+                           "merged into 9 boxes",
+                           "start valid", "ok"})
+    EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
+  EXPECT_EQ(run.output.find("octree type"), std::string::npos) << run.output;  // octomap is quiet
+}
+
 TEST_F(PlanCommandTest, CheckRejectsBadProblemsWithExitTwo) {
   const CommandRun overlap = kautham("check tests/data/overlap_can_in_glass.xml");
   EXPECT_EQ(overlap.exitCode, 2) << overlap.output;

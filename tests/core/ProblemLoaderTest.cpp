@@ -453,6 +453,15 @@ const MalformedCase kMalformedCases[] = {
     {"init_out_of_range", nullptr, 24, "each in [0, 1]"},
     {"no_robot", nullptr, 3, "the problem has no <Robot>"},
     {"support_not_fixed", nullptr, 20, "support 'can' must name a fixed <Obstacle>"},
+    {"environment_missing_octree", nullptr, 11,
+     "model file 'environments/no_such_scene.bt' not found"},
+    {"environment_corrupt_octree", nullptr, 11, "corrupt.bt': corrupt or truncated data"},
+    {"environment_not_an_octree", nullptr, 11,
+     "not_an_octree.bt': not an OctoMap file: the first line should start with '# Octomap "
+     "OcTree binary file'"},
+    {"environment_empty_octree", nullptr, 11,
+     "empty.bt': the octree is empty: it has no occupied voxel"},
+    {"environment_bad_occupancy", nullptr, 11, "occupancy is a probability threshold"},
 };
 
 fs::path malformedFile(const std::string& name) { return repoFile("tests/data/malformed/" + name); }

@@ -12,8 +12,8 @@ namespace {
 using test::ContextFixture;
 
 TEST(ValidityTest, StartStatesOfTheShippedProblemsAreValid) {
-  for (const char* file :
-       {"problems/pusher_cans_5.xml", "problems/pusher_free.xml", "tests/data/pusher_wall.xml"}) {
+  for (const char* file : {"problems/pusher_cans_5.xml", "problems/pusher_free.xml",
+                           "tests/data/pusher_wall.xml", "problems/pusher_shelf.xml"}) {
     ContextFixture scene(file);
     EXPECT_EQ(scene.context.startViolation(), Violation::None) << file;
     EXPECT_EQ(scene.context.validityChecker().check(scene.state.data()), Violation::None) << file;
@@ -196,6 +196,47 @@ TEST(ValidityTest, RunawaySpeedIsDetectedAsBlowUp) {
   ContextFixture scene("problems/pusher_cans_5.xml");
   scene.bodyState("can4")[WorldLayout::kLinearVelocity + 2] = 1e6;  // a kick no push can give
   EXPECT_EQ(scene.drive({0.0, 0.0, 0.0}, 1), Violation::SimulationDiverged);
+}
+
+// ----- a sensed environment: the shelf of problems/pusher_shelf.xml, boxes from an octree -----
+
+TEST(ValidityTest, RobotTouchingAShelfBoardIsInvalid) {
+  ContextFixture scene("problems/pusher_shelf.xml");
+  const std::size_t gripper = scene.body("pusher/gripper");
+  // Left of the cans and the glass (x = -0.3), then forward: the fingers (8 cm ahead of the
+  // gripper's origin) come within 2 cm of the lowest board (its front face at y = 0.42, at
+  // the palm's height) without touching it, then slide along it, then touch it.
+  EXPECT_EQ(scene.drive({-0.2, 0.0, 0.0}, 30), Violation::None);
+  EXPECT_EQ(scene.drive({0.0, 0.2, 0.0}, 59), Violation::None);
+  EXPECT_GT(WorldLayout::position(scene.state.data(), gripper).y(), 0.27);
+  EXPECT_EQ(scene.drive({0.2, 0.0, 0.0}, 5), Violation::None);
+  EXPECT_EQ(scene.drive({0.0, 0.2, 0.0}, 20), Violation::RobotTouchedFixed);
+  const double y = WorldLayout::position(scene.state.data(), gripper).y();
+  EXPECT_GT(y, 0.33);  // the fingers' tips reached the board ...
+  EXPECT_LT(y, 0.36);  // ... inside the workspace: it is the board that made the state invalid
+}
+
+TEST(ValidityTest, ObjectsInterpenetratingTheEnvironmentAtTheStartAreReported) {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_shelf.xml"));
+  PlanningContext fine(problem, 0, PropagationSettings{});
+  EXPECT_TRUE(fine.startOverlaps().empty());
+  // can3 pushed back into the lowest board of the shelf.
+  problem.objects[*problem.findObject("can3")].home.position.y() = 0.43;
+  PlanningContext overlapping(problem, 0, PropagationSettings{});
+  const auto& overlaps = overlapping.startOverlaps();
+  ASSERT_EQ(overlaps.size(), 1u);
+  EXPECT_TRUE((overlaps[0].first == "can3" && overlaps[0].second == "shelf") ||
+              (overlaps[0].first == "shelf" && overlaps[0].second == "can3"));
+  EXPECT_GT(overlaps[0].depth, 0.005);
+}
+
+TEST(ValidityTest, ARobotStartingInsideTheEnvironmentIsInvalid) {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_shelf.xml"));
+  // <Init> leaves the y joint at 0: the gripper starts at its home, here with the fingers'
+  // tips at y = 0.36 + 0.08, 2 cm into the lowest board.
+  problem.robot.home.position.y() = 0.36;
+  PlanningContext context(problem, 0, PropagationSettings{});
+  EXPECT_EQ(context.startViolation(), Violation::RobotTouchedFixed);
 }
 
 }  // namespace

@@ -53,9 +53,18 @@ struct RobotInstance : ModelInstance {
   ControlSet controls;
 };
 
+/// Where an object made by <Environment octomap=".."> came from (see OctomapEnvironment.h).
+struct EnvironmentSource {
+  std::filesystem::path octree;
+  double resolution = 0.0;  ///< metres
+  std::size_t leaves = 0;   ///< occupied leaves of the octree
+  std::size_t boxes = 0;    ///< boxes they were merged into: the object's collision shapes
+};
+
 struct ObjectInstance : ModelInstance {
   ObjectRole role = ObjectRole::Fixed;
   PoseUncertainty uncertainty;
+  std::optional<EnvironmentSource> environment;  ///< set for sensed environments only
 };
 
 /// The <Physics> block: the ODE world and its contact model.
