@@ -1,7 +1,9 @@
 // Physics throughput: how fast ODE steps our scenes, and how much of that speed the planner's
 // inner loop (PhysicsPropagator::propagate + WorldValidityChecker::check, chained from state to
-// state) keeps. Scenes are problems/pusher_cans_5.xml with 5, 20 and 40 cans; the pusher sweeps
-// the table with a fixed control sequence that pushes cans. See docs/performance.md.
+// state) keeps. Scenes are problems/pusher_cans_5.xml with 5, 20 and 40 cans, where the pusher
+// sweeps the table with a fixed control sequence that pushes cans, and the arm problems
+// (tests/data/kuka_table.xml, tests/data/yumi_table.xml, problems/kuka_cans_*.xml), where every
+// arm joint turns forth and back in turn. See docs/performance.md.
 
 #include <algorithm>
 #include <chrono>
@@ -140,6 +142,25 @@ std::vector<Segment> sweep() {
     segments.push_back({{0.0, kForwardSpeed, 0.0}, kForwardSteps});
     segments.push_back({{0.0, -kForwardSpeed, 0.0}, kForwardSteps});
     if (column < kSide) segments.push_back({{kShiftSpeed, 0.0, 0.0}, kShiftSteps});
+  }
+  return segments;
+}
+
+/// The arm motion: each revolute joint in turn turns at 0.3 rad/s for 0.5 s, then back for
+/// 0.5 s, every other joint held still; the fingers stay. The arm returns to its start
+/// configuration after each joint, so it stays where its start state puts it (over the table).
+std::vector<Segment> armMotion(const World& world) {
+  constexpr double kSpeed = 0.3;   // rad/s
+  constexpr unsigned kSteps = 50;  // physics steps each way (a multiple of 5)
+  const auto& actuators = world.actuators();
+  std::vector<Segment> segments;
+  for (std::size_t j = 0; j < actuators.size(); ++j) {
+    if (actuators[j].type == kautham::core::JointType::Prismatic) continue;
+    for (double sign : {1.0, -1.0}) {
+      Segment s{std::vector<double>(actuators.size(), 0.0), kSteps};
+      s.velocities[j] = sign * kSpeed;
+      segments.push_back(std::move(s));
+    }
   }
   return segments;
 }
@@ -337,7 +358,8 @@ struct Rate {
 };
 
 struct SceneResult {
-  int objects = 0;
+  std::string name;  ///< "5 cans", or the arm problem's file name
+  int objects = 0;   ///< movable objects and target
   unsigned sweepsPerRepetition = 0;
   unsigned stepsPerCall = 0;  ///< physics steps per propagation step in (b)
   Rate raw;                   ///< (a)
@@ -348,6 +370,7 @@ struct SceneResult {
   int movedChained = 0;
   unsigned long long invalidPerSweep = 0;
   unsigned long long callsPerSweep = 0;
+  std::vector<std::pair<int, double>> rawByIterations;  ///< (iterations, raw steps/s), arms only
 
   /// (c): time per physics step through propagate + check over time per raw step.
   double ratio() const { return raw.stepsPerSecond / propagate.stepsPerSecond; }
@@ -363,9 +386,27 @@ struct Options {
   double minSeconds = 0.7;
   int repetitions = 3;
   std::optional<int> maxContacts;
+  bool arms = true;                         ///< also measure the arm problems
+  std::vector<int> armIterations{20, 100};  ///< QuickStep iterations for the arms' raw stepping
   std::string json;
   std::string profile;  ///< run one untimed sweep of this kind per scene
 };
+
+/// Raw steps/s of the scene's control sequence with `iterations` QuickStep iterations: the
+/// best of `repetitions` runs of at least `minSeconds` each.
+double rawRateWithIterations(Problem problem, const std::vector<Segment>& segments, int iterations,
+                             const Options& options) {
+  problem.physics.solverIterations = iterations;
+  PlanningContext context(problem, 0, PropagationSettings{});
+  rawSweep(context, segments);  // warm-up
+  Rate best;
+  for (int rep = 0; rep < options.repetitions; ++rep) {
+    Work work;
+    while (work.seconds < options.minSeconds) work += rawSweep(context, segments);
+    best.keepBest(work);
+  }
+  return best.stepsPerSecond;
+}
 
 /// The two contexts of a scene: the problem's propagation step, and one physics step.
 struct SceneContexts {
@@ -374,8 +415,8 @@ struct SceneContexts {
   std::unique_ptr<PlanningContext> propagate1;
 };
 
-SceneContexts makeContexts(const Problem& base, int cans, const Options& options) {
-  SceneContexts scene{makeScene(base, cans), nullptr, nullptr};
+SceneContexts makeContexts(const Problem& problem, const Options& options) {
+  SceneContexts scene{problem, nullptr, nullptr};
   if (options.maxContacts) scene.problem.physics.maxContacts = *options.maxContacts;
   PropagationSettings settings;  // what the planners use: the problem's PropagationStepSize
   for (const auto& p : scene.problem.planner.parameters)
@@ -385,14 +426,14 @@ SceneContexts makeContexts(const Problem& base, int cans, const Options& options
   scene.propagate1 = std::make_unique<PlanningContext>(scene.problem, 0, settings);
   const Violation start = scene.propagate->startViolation();
   if (start != Violation::None)
-    throw std::runtime_error("the start state of the " + std::to_string(cans) +
-                             "-can scene is invalid: " + kautham::physics::toString(start));
+    throw std::runtime_error("the start state of " + scene.problem.name +
+                             " is invalid: " + kautham::physics::toString(start));
   return scene;
 }
 
 /// --profile: one untimed sweep of one kind, for valgrind --tool=callgrind.
 void profileRun(const Problem& base, int cans, const Options& options) {
-  SceneContexts scene = makeContexts(base, cans, options);
+  SceneContexts scene = makeContexts(makeScene(base, cans), options);
   const std::vector<Segment> segments = sweep();
   std::vector<double> finalState;
   Work work;
@@ -407,17 +448,21 @@ void profileRun(const Problem& base, int cans, const Options& options) {
               movedCans(*scene.propagate, finalState));
 }
 
-SceneResult measure(const Problem& base, int cans, const Options& options) {
-  SceneContexts scene = makeContexts(base, cans, options);
+/// Measures one scene under the fixed control sequence `segments` (the pusher's sweep, or
+/// armMotion() when empty).
+SceneResult measure(const Problem& problem, const std::string& name, std::vector<Segment> segments,
+                    const Options& options) {
+  SceneContexts scene = makeContexts(problem, options);
   ChainedRunner propagate(*scene.propagate);
   ChainedRunner propagate1(*scene.propagate1);
-  const std::vector<Segment> segments = sweep();
+  if (segments.empty()) segments = armMotion(scene.propagate->world());
   for (const Segment& s : segments)
     if (s.steps % propagate.stepsPerCall() != 0)
       throw std::runtime_error("a sweep segment is not a whole number of propagation steps");
 
   SceneResult result;
-  result.objects = cans;
+  result.name = name;
+  result.objects = static_cast<int>(problem.objects.size());
   result.stepsPerCall = propagate.stepsPerCall();
   // Warm-up and sanity checks: the pusher must move cans, and how many states are invalid.
   std::vector<double> rawFinal, chainedFinal;
@@ -448,6 +493,37 @@ SceneResult measure(const Problem& base, int cans, const Options& options) {
   return result;
 }
 
+SceneResult measureCans(const Problem& base, int cans, const Options& options) {
+  return measure(makeScene(base, cans), std::to_string(cans) + " cans", sweep(), options);
+}
+
+/// The arm problems that exist: the two test problems, and problems/kuka_cans_*.xml.
+std::vector<std::filesystem::path> armProblems() {
+  const std::filesystem::path source(KAUTHAM_SOURCE_DIR);
+  std::vector<std::filesystem::path> files = {source / "tests/data/kuka_table.xml",
+                                              source / "tests/data/yumi_table.xml"};
+  std::vector<std::filesystem::path> cans;
+  for (const auto& entry : std::filesystem::directory_iterator(source / "problems")) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("kuka_cans_", 0) == 0 && entry.path().extension() == ".xml")
+      cans.push_back(entry.path());
+  }
+  std::sort(cans.begin(), cans.end());
+  files.insert(files.end(), cans.begin(), cans.end());
+  return files;
+}
+
+SceneResult measureArm(const std::filesystem::path& file, const Options& options) {
+  const Problem problem = kautham::core::loadProblem(file);
+  SceneResult result = measure(problem, file.filename().string(), {}, options);
+  const std::vector<Segment> segments =
+      armMotion(makeContexts(problem, options).propagate->world());
+  for (int iterations : options.armIterations)
+    result.rawByIterations.emplace_back(
+        iterations, rawRateWithIterations(problem, segments, iterations, options));
+  return result;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Output
 
@@ -469,23 +545,35 @@ void printTable(const std::vector<SceneResult>& results) {
       "\n(a) raw World::step() loop; (b) propagate (%u steps) + check per call, chained;\n"
       "(c) ratio = time per physics step in (b) / in (a); (d) the same at 1 step per call\n",
       k);
-  std::printf("\n%7s %12s %12s %12s %9s %12s %9s\n", "objects", "(a) steps/s", "(b) calls/s",
+  std::printf("\n%-16s %12s %12s %12s %9s %12s %9s\n", "scene", "(a) steps/s", "(b) calls/s",
               "(b) steps/s", "(c) ratio", "(d) calls/s", "(d) ratio");
   for (const SceneResult& r : results)
-    std::printf("%7d %12.0f %12.0f %12.0f %9.3f %12.0f %9.3f\n", r.objects, r.raw.stepsPerSecond,
-                r.propagate.callsPerSecond, r.propagate.stepsPerSecond, r.ratio(),
-                r.propagate1.callsPerSecond, r.ratio1());
+    std::printf("%-16s %12.0f %12.0f %12.0f %9.3f %12.0f %9.3f\n", r.name.c_str(),
+                r.raw.stepsPerSecond, r.propagate.callsPerSecond, r.propagate.stepsPerSecond,
+                r.ratio(), r.propagate1.callsPerSecond, r.ratio1());
 
   std::printf(
       "\nNon-physics work of a call, timed alone (us): write state + controls, read state,"
       "\ncheck; and the ratios it alone accounts for at %u and 1 step per call:\n",
       k);
-  std::printf("%7s %9s %9s %9s %9s %12s %12s\n", "objects", "total", "write", "read", "check",
+  std::printf("%-16s %9s %9s %9s %9s %12s %12s\n", "scene", "total", "write", "read", "check",
               "ratio (b)", "ratio (d)");
   for (const SceneResult& r : results)
-    std::printf("%7d %9.2f %9.2f %9.2f %9.2f %12.4f %12.4f\n", r.objects, 1e6 * r.overhead.total(),
-                1e6 * r.overhead.write, 1e6 * r.overhead.read, 1e6 * r.overhead.check,
-                r.overheadRatio(r.stepsPerCall), r.overheadRatio(1));
+    std::printf("%-16s %9.2f %9.2f %9.2f %9.2f %12.4f %12.4f\n", r.name.c_str(),
+                1e6 * r.overhead.total(), 1e6 * r.overhead.write, 1e6 * r.overhead.read,
+                1e6 * r.overhead.check, r.overheadRatio(r.stepsPerCall), r.overheadRatio(1));
+
+  bool header = false;
+  for (const SceneResult& r : results) {
+    if (r.rawByIterations.empty()) continue;
+    if (!header) std::printf("\nArm scenes, raw steps/s by QuickStep iterations:\n");
+    header = true;
+    std::printf("%-16s", r.name.c_str());
+    for (const auto& [iterations, rate] : r.rawByIterations)
+      std::printf("  %4d: %8.0f (x%.2f)", iterations, rate,
+                  r.rawByIterations.front().second / rate);
+    std::printf("\n");
+  }
 }
 
 void writeJson(const std::string& file, const std::vector<SceneResult>& results,
@@ -503,7 +591,8 @@ void writeJson(const std::string& file, const std::vector<SceneResult>& results,
       << "  \"scenes\": [\n";
   for (std::size_t i = 0; i < results.size(); ++i) {
     const SceneResult& r = results[i];
-    out << "    {\"objects\": " << r.objects << ", \"raw_steps_per_s\": " << r.raw.stepsPerSecond
+    out << "    {\"scene\": \"" << r.name << "\", \"objects\": " << r.objects
+        << ", \"raw_steps_per_s\": " << r.raw.stepsPerSecond
         << ", \"steps_per_call\": " << r.stepsPerCall
         << ", \"propagate_check_calls_per_s\": " << r.propagate.callsPerSecond
         << ", \"propagate_check_steps_per_s\": " << r.propagate.stepsPerSecond
@@ -517,8 +606,10 @@ void writeJson(const std::string& file, const std::vector<SceneResult>& results,
         << ", \"cans_moved_raw\": " << r.movedRaw << ", \"cans_moved_chained\": " << r.movedChained
         << ", \"invalid_states_per_sweep\": " << r.invalidPerSweep
         << ", \"calls_per_sweep\": " << r.callsPerSweep
-        << ", \"sweeps_per_repetition\": " << r.sweepsPerRepetition << "}"
-        << (i + 1 < results.size() ? ",\n" : "\n");
+        << ", \"sweeps_per_repetition\": " << r.sweepsPerRepetition;
+    for (const auto& [iterations, rate] : r.rawByIterations)
+      out << ", \"raw_steps_per_s_" << iterations << "_iterations\": " << rate;
+    out << "}" << (i + 1 < results.size() ? ",\n" : "\n");
   }
   out << "  ]\n}\n";
 }
@@ -529,7 +620,8 @@ int main(int argc, char** argv) {
   Options options;
   CLI::App app{
       "Physics throughput on problems/pusher_cans_5.xml with N cans, a pusher sweeping the "
-      "table with fixed controls: (a) raw ODE steps per second, (b) PhysicsPropagator::"
+      "table with fixed controls, and on the arm problems (each joint turning in turn): (a) raw "
+      "ODE steps per second, (b) PhysicsPropagator::"
       "propagate + WorldValidityChecker::check calls chained as a planner does, (c) the ratio "
       "of their times per physics step (the project aims at <= 1.15), (d) that ratio with one "
       "physics step per call. See docs/performance.md."};
@@ -546,6 +638,11 @@ int main(int argc, char** argv) {
   app.add_option("--max-contacts", options.maxContacts,
                  "Override the problem's contacts per pair (8), for comparisons only")
       ->check(CLI::Range(1, 64));
+  app.add_flag("!--no-arms", options.arms, "Skip the arm problems (KUKA, YuMi)");
+  app.add_option("--arm-iterations", options.armIterations,
+                 "QuickStep iterations at which the arm scenes' raw stepping is also timed")
+      ->delimiter(',')
+      ->capture_default_str();
   app.add_option("--json", options.json, "Also write the results to this JSON file");
   app.add_option("--profile", options.profile,
                  "Run one untimed sweep of one kind per scene and exit (for valgrind)")
@@ -567,16 +664,18 @@ int main(int argc, char** argv) {
                 totalSteps(sweep()), options.minSeconds, options.repetitions);
 
     std::vector<SceneResult> results;
-    for (int cans : options.objects) {
-      results.push_back(measure(base, cans, options));
-      const SceneResult& r = results.back();
+    const auto report = [](const SceneResult& r) {
       std::printf(
-          "%2d cans: %u sweep(s) per repetition; cans moved > 5 mm by a sweep: %d (a), %d (b); "
+          "%s: %u sweep(s) per repetition; objects moved > 5 mm by a sweep: %d (a), %d (b); "
           "invalid states in a sweep of (b): %llu of %llu\n",
-          cans, r.sweepsPerRepetition, r.movedRaw, r.movedChained, r.invalidPerSweep,
+          r.name.c_str(), r.sweepsPerRepetition, r.movedRaw, r.movedChained, r.invalidPerSweep,
           r.callsPerSweep);
       std::fflush(stdout);
-    }
+    };
+    for (int cans : options.objects) report(results.emplace_back(measureCans(base, cans, options)));
+    if (options.arms)
+      for (const auto& file : armProblems())
+        report(results.emplace_back(measureArm(file, options)));
     printTable(results);
     if (!options.json.empty()) writeJson(options.json, results, base, options);
   } catch (const std::exception& e) {
