@@ -217,5 +217,26 @@ TEST_F(GenerateCommandTest, BadArgumentsExitTwo) {
   EXPECT_EQ(kautham("generate").exitCode, 2);                   // no kind of scene
 }
 
+/// Every shipped scene is what its recorded command writes today: none was edited by hand or
+/// left behind by a change of the generator.
+TEST_F(GenerateCommandTest, ShippedScenesAreUpToDate) {
+  int scenes = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(KAUTHAM_SOURCE_DIR) / "problems")) {
+    const std::string name = entry.path().filename().string();
+    if (!std::regex_match(name, std::regex("(kuka|yumi)_cans_[0-9]+\\.xml"))) continue;
+    ++scenes;
+    const std::string text = readFile(entry.path());
+    std::smatch made;
+    ASSERT_TRUE(std::regex_search(
+        text, made, std::regex("Made by: kautham (generate clutter [-a-z0-9_. ]*[.]xml) -->")))
+        << name;
+    const CommandRun run = test::run("cd '" + folder.string() + "' && '" + KAUTHAM_BINARY + "' " +
+                                     made[1].str() + " 2>&1");
+    ASSERT_EQ(run.exitCode, 0) << name << "\n" << run.output;
+    EXPECT_EQ(readFile(folder / name), text) << name << " differs from what its command writes";
+  }
+  EXPECT_EQ(scenes, 16);
+}
+
 }  // namespace
 }  // namespace kautham::apps
