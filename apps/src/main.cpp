@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   kautham::apps::addPlanCommand(app, exitCode);
   kautham::apps::addCheckCommand(app, exitCode);
   kautham::apps::addPlannersCommand(app, exitCode);
+  kautham::apps::addGenerateCommand(app, exitCode);
   kautham::apps::addViewCommand(app, exitCode);
   try {
     app.parse(argc, argv);
