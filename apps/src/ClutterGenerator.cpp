@@ -54,6 +54,7 @@ struct RobotSetup {
   const char* name;
   const char* homeComment;
   const char* home;
+  const char* controls;  ///< the Kautham control set: arm joints only, fingers held open
   const char* init;
   const char* initComment;
   const char* goalLink;
@@ -78,9 +79,10 @@ const std::vector<RobotSetup>& robotSetups() {
        "turned +90 deg about z: the arm's +x (where A2 tips it for positive angles) faces the "
        "table",
        R"(X="0.0" Y="-0.5" Z="0.75" WX="0" WY="0" WZ="1" TH="1.5707963")",
-       "0.5 0.6667 0.5 0.125 0.5 0.7083 0.5 0.5 0.5",
-       "A1..A7, then the two fingers. A2 = +40 deg, A4 = -90 deg, A6 = +50 deg: the\n"
-       "             gripper points straight down; fingers half open (4.5 cm gap).",
+       "robots/controls/kuka_lwr4_arm.cntr",
+       "0.5 0.6667 0.5 0.125 0.5 0.7083 0.5",
+       "normalized A1..A7 (the control set holds the fingers half open, a 4.5 cm gap).\n"
+       "             A2 = +40 deg, A4 = -90 deg, A6 = +50 deg: the gripper points straight down.",
        "kuka_tcp",
        {0, 2800},
        1200,
@@ -99,10 +101,10 @@ const std::vector<RobotSetup>& robotSetups() {
        "turned +90 deg about z: YuMi's front (+x of yumi_body) faces +y; the base plate rests\n"
        "         on the table top (robot bases do not collide with fixed obstacles)",
        R"(X="0.0" Y="-0.3" Z="0.75" WX="0" WY="0" WZ="1" TH="1.5707963")",
-       "0.5737 0.6029 0.5178 0.9737 0.7142 0.5029 0.5 0.5 0.5 0.4785 0.4048 0.3254 0.9054 "
-       "0.3436 0.5201 0.5 0.5 0.5",
-       "left arm axes 1, 2, 7, 3, 4, 5, 6, its two fingers, then the same for the right\n"
-       "             arm; fingers half open (2.5 cm gap)",
+       "robots/controls/yumi_left_arm.cntr",
+       "0.5737 0.6029 0.5178 0.9737 0.7142 0.5029 0.5",
+       "normalized left arm axes 1, 2, 7, 3, 4, 5, 6 (the control set holds the right arm\n"
+       "             folded away and every finger half open, a 2.5 cm gap)",
        "yumi_left_tcp",
        {-1200, 2000},
        1000,
@@ -347,7 +349,8 @@ std::string clutterProblemXml(const ClutterOptions& options, const std::vector<C
   xml += fmt::format("  <Robot robot=\"{}\" name=\"{}\">\n", setup.urdf, setup.name);
   xml += fmt::format("    <!-- {} -->\n", setup.homeComment);
   xml += fmt::format("    <Home {}/>\n", setup.home);
-  xml += "  </Robot>\n\n";
+  xml += "  </Robot>\n";
+  xml += fmt::format("  <Controls robot=\"{}\"/>\n\n", setup.controls);
   xml +=
       "  <Obstacle obstacle=\"objects/table.urdf\" role=\"fixed\">\n"
       "    <KauthamName name=\"table\"/>\n"
@@ -368,11 +371,8 @@ std::string clutterProblemXml(const ClutterOptions& options, const std::vector<C
         i + 1, metres(cans[i].x), metres(cans[i].y));
   xml +=
       "\n"
-      "  <!-- 100 solver iterations: with 20, a long chain of arm links lets a joint that is "
-      "pushed\n"
-      "       into its stop pass it by several centimetres (docs/robots.md) -->\n"
       "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "
-      "solverIterations=\"100\"\n"
+      "solverIterations=\"20\"\n"
       "           friction=\"0.5\" erp=\"0.2\" cfm=\"1e-5\"/>\n"
       "  <Interaction support=\"table\" maxObjectSpeed=\"1.0\" maxDisplacement=\"0.3\" "
       "maxTilt=\"0.35\"\n"
@@ -398,7 +398,8 @@ std::string clutterProblemXml(const ClutterOptions& options, const std::vector<C
       metres(goal.x), metres(goal.y), metres(setup.goalOffsetY));
   xml += fmt::format(
       "        <GoalRegion link=\"{}\" relativeTo=\"glass\" offset=\"0 -{} 0\" "
-      "tolerance=\"0.03\"/>\n",
+      "tolerance=\"0.03\"\n"
+      "                    approach=\"0 0 -1\" approachTolerance=\"0.6\"/>\n",
       setup.goalLink, metres(setup.goalOffsetY));
   xml +=
       "      </Query>\n"
