@@ -14,6 +14,7 @@ void addGenerateCommand(CLI::App& app, int& exitCode);
 void addPlanCommand(CLI::App& app, int& exitCode);
 void addPlannersCommand(CLI::App& app, int& exitCode);
 void addViewCommand(CLI::App& app, int& exitCode);
+void addValidateCommand(CLI::App& app, int& exitCode);
 
 constexpr int kExitSolved = 0;
 constexpr int kExitNotSolved = 1;

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   kautham::apps::addPlannersCommand(app, exitCode);
   kautham::apps::addGenerateCommand(app, exitCode);
   kautham::apps::addViewCommand(app, exitCode);
+  kautham::apps::addValidateCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "MobileBase.h"
 #include "XmlReader.h"
@@ -61,9 +62,10 @@ class ProblemReader {
     xml_.allowAttributes(root, {"name"});
     problem_.file = xml_.file();
     problem_.name = xml_.optionalText(root, "name").value_or(xml_.file().stem().string());
-    xml_.atMostOnce(root, {"Physics", "Interaction", "Kinodynamics", "Workspace"});
+    xml_.atMostOnce(root, {"Physics", "Interaction", "Kinodynamics", "Workspace", "Uncertainty"});
     for (const XMLElement* e = root.FirstChildElement(); e; e = e->NextSiblingElement())
       readTopLevel(*e);
+    resolvePoseUncertainty();
     if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
     if (!plannerElement_) xml_.fail(root, "the problem has no <Planner> block");
     readControls();
@@ -83,6 +85,8 @@ class ProblemReader {
       readObstacle(e);
     else if (tag == "Physics")
       readPhysics(e);
+    else if (tag == "Uncertainty")
+      readUncertainty(e);
     else if (tag == "Interaction")
       readInteraction(e);
     else if (tag == "Kinodynamics")
@@ -97,8 +101,8 @@ class ProblemReader {
       setControlsElement(e);
     else
       xml_.fail(e, "unexpected element <" + tag +
-                       ">; expected Robot, Obstacle, Environment, Controls, Physics, Interaction, "
-                       "Kinodynamics, Workspace or Planner");
+                       ">; expected Robot, Obstacle, Environment, Controls, Physics, Uncertainty, "
+                       "Interaction, Kinodynamics, Workspace or Planner");
   }
 
   fs::path findModel(const XMLElement& e, const std::string& relative) const {
@@ -224,9 +228,39 @@ class ProblemReader {
     object.role = readRole(e, object.model);
     if (const XMLElement* u = e.FirstChildElement("Uncertainty")) {
       xml_.allowAttributes(*u, {"x", "y", "yaw"});
-      object.uncertainty = {nonNegative(*u, "x"), nonNegative(*u, "y"), nonNegative(*u, "yaw")};
+      for (const char* attribute : {"x", "y", "yaw"}) nonNegative(*u, attribute);
+      if (object.role == ObjectRole::Fixed)
+        xml_.fail(*u, "object '" + object.name +
+                          "' is fixed: it cannot be displaced, so it has no pose <Uncertainty>");
+      ownUncertainty_.emplace_back(problem_.objects.size(), u);
     }
     problem_.objects.push_back(std::move(object));
+  }
+
+  /// The top-level <Uncertainty x y yaw friction erp cfm control>: standard deviations.
+  void readUncertainty(const XMLElement& e) {
+    xml_.allowAttributes(e, {"x", "y", "yaw", "friction", "erp", "cfm", "control"});
+    problem_.defaultPoseUncertainty = {nonNegative(e, "x"), nonNegative(e, "y"),
+                                       nonNegative(e, "yaw")};
+    ContactUncertainty& u = problem_.uncertainty;
+    u.where = xml_.at(e);
+    u.friction = nonNegative(e, "friction");
+    u.erp = nonNegative(e, "erp");
+    u.cfm = nonNegative(e, "cfm");
+    u.control = nonNegative(e, "control");
+  }
+
+  /// Every movable object and the target gets the default pose uncertainty; the attributes of
+  /// its own <Uncertainty> replace the default's, one by one. Fixed objects have none.
+  void resolvePoseUncertainty() {
+    for (ObjectInstance& object : problem_.objects)
+      if (object.role != ObjectRole::Fixed) object.uncertainty = problem_.defaultPoseUncertainty;
+    for (const auto& [index, element] : ownUncertainty_) {
+      PoseUncertainty& u = problem_.objects[index].uncertainty;
+      u.x = nonNegative(*element, "x", u.x);
+      u.y = nonNegative(*element, "y", u.y);
+      u.yaw = nonNegative(*element, "yaw", u.yaw);
+    }
   }
 
   /// <Environment octomap name occupancy> with an optional <Home>: a sensed scene whose
@@ -580,6 +614,8 @@ class ProblemReader {
   const XMLElement* plannerElement_ = nullptr;
   const XMLElement* controlsElement_ = nullptr;
   bool rolesGiven_ = false;
+  /// Objects with an <Uncertainty> of their own (index into Problem::objects, the element).
+  std::vector<std::pair<std::size_t, const XMLElement*>> ownUncertainty_;
   const XMLElement* workspaceElement_ = nullptr;
 };
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "GeomTag.h"
 #include "OdeMeshData.h"
@@ -90,6 +91,13 @@ std::vector<double> World::jointVelocities() const {
   return rates;
 }
 
+void World::setContactParameters(const ContactParameters& parameters) {
+  if (!(parameters.friction >= 0.0) || !(parameters.erp >= 0.0 && parameters.erp <= 1.0) ||
+      !(parameters.cfm >= 0.0))
+    throw std::invalid_argument("contact parameters need friction >= 0, erp in [0, 1], cfm >= 0");
+  contact_ = parameters;
+}
+
 void World::resetSolverSeed() const { dRandSetSeed(0); }
 
 void World::step() {
@@ -149,9 +157,9 @@ void World::collide(dGeomID a, dGeomID b) {
   for (int i = 0; i < count; ++i) {
     dContact& contact = contactBuffer_[i];
     contact.surface.mode = dContactApprox1 | dContactSoftERP | dContactSoftCFM;
-    contact.surface.mu = settings_.friction;
-    contact.surface.soft_erp = settings_.erp;
-    contact.surface.soft_cfm = settings_.cfm;
+    contact.surface.mu = contact_.friction;
+    contact.surface.soft_erp = contact_.erp;
+    contact.surface.soft_cfm = contact_.cfm;
     dJointAttach(dJointCreateContact(world_, contactGroup_, &contact), bodyA, bodyB);
   }
 }

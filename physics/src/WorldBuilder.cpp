@@ -386,7 +386,9 @@ class World::Builder {
 };
 
 World::World(const core::Problem& problem, const core::Query& query)
-    : ode_(OdeLibrary::acquire()), settings_(problem.physics) {
+    : ode_(OdeLibrary::acquire()),
+      settings_(problem.physics),
+      contact_{problem.physics.friction, problem.physics.erp, problem.physics.cfm} {
   try {
     Builder(*this, problem).build(query);
   } catch (...) {

@@ -365,6 +365,46 @@ TEST_F(ProblemVariant, ValuesOtherThanTheDefaultsAreRead) {
   EXPECT_DOUBLE_EQ(problem.queries.at(0).goal.tolerance, 0.05);
 }
 
+TEST_F(ProblemVariant, WithoutUncertaintyEveryStandardDeviationIsZero) {
+  const Problem problem = load(textOfCans5());
+  EXPECT_DOUBLE_EQ(problem.uncertainty.friction, 0.0);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.erp, 0.0);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.cfm, 0.0);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.control, 0.0);
+  EXPECT_TRUE(problem.defaultPoseUncertainty.isZero());
+  for (const ObjectInstance& object : problem.objects)
+    EXPECT_TRUE(object.uncertainty.isZero()) << object.name;
+}
+
+TEST_F(ProblemVariant, TopLevelUncertaintyIsTheDefaultAndObjectsOverrideIt) {
+  std::string text = textOfCans5();
+  // After the obstacles, so the default must reach objects read before it.
+  text = replaceOnce(text, "  <Physics ",
+                     R"(  <Uncertainty x="0.01" y="0.02" yaw="0.1" friction="0.05" erp="0.02" )"
+                     R"(cfm="1e-6" control="0.03"/>)"
+                     "\n  <Physics ");
+  text = replaceOnce(text, R"(<KauthamName name="can1"/>)",
+                     R"(<KauthamName name="can1"/><Uncertainty x="0.005" yaw="0"/>)");
+  const Problem problem = load(text);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.friction, 0.05);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.erp, 0.02);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.cfm, 1e-6);
+  EXPECT_DOUBLE_EQ(problem.uncertainty.control, 0.03);
+  EXPECT_EQ(problem.uncertainty.where.line, lineOf(text, "<Uncertainty x=\"0.01\""));
+  EXPECT_DOUBLE_EQ(problem.defaultPoseUncertainty.y, 0.02);
+  auto object = [&](const char* name) { return problem.objects.at(*problem.findObject(name)); };
+  // can1's own attributes win one by one; y comes from the default.
+  EXPECT_DOUBLE_EQ(object("can1").uncertainty.x, 0.005);
+  EXPECT_DOUBLE_EQ(object("can1").uncertainty.y, 0.02);
+  EXPECT_DOUBLE_EQ(object("can1").uncertainty.yaw, 0.0);
+  for (const char* name : {"can2", "can5", "glass"}) {  // movable objects and the target
+    EXPECT_DOUBLE_EQ(object(name).uncertainty.x, 0.01) << name;
+    EXPECT_DOUBLE_EQ(object(name).uncertainty.y, 0.02) << name;
+    EXPECT_DOUBLE_EQ(object(name).uncertainty.yaw, 0.1) << name;
+  }
+  EXPECT_TRUE(object("table").uncertainty.isZero());  // fixed: never uncertain
+}
+
 TEST_F(ProblemVariant, ObstacleWithoutRoleIsFixed) {
   const Problem problem =
       load(replaceOnce(textOfCans5(), R"(obstacle="objects/table.urdf" role="fixed")",
@@ -462,6 +502,12 @@ const MalformedCase kMalformedCases[] = {
     {"environment_empty_octree", nullptr, 11,
      "empty.bt': the octree is empty: it has no occupied voxel"},
     {"environment_bad_occupancy", nullptr, 11, "occupancy is a probability threshold"},
+    {"uncertainty_negative", nullptr, 15, "attribute friction must not be negative"},
+    {"uncertainty_unknown_attribute", nullptr, 15, "no attribute 'mu'; allowed:"},
+    {"uncertainty_twice", nullptr, 16,
+     "<Uncertainty> appears twice inside <Problem> (first on line 15)"},
+    {"uncertainty_on_fixed", nullptr, 8,
+     "object 'table' is fixed: it cannot be displaced, so it has no pose <Uncertainty>"},
 };
 
 fs::path malformedFile(const std::string& name) { return repoFile("tests/data/malformed/" + name); }

@@ -23,6 +23,19 @@ struct PoseUncertainty {
   double x = 0.0;
   double y = 0.0;
   double yaw = 0.0;
+
+  bool isZero() const { return x == 0.0 && y == 0.0 && yaw == 0.0; }
+};
+
+/// The top-level <Uncertainty> element's contact and control parts (the paper's U_D and
+/// U_epsilon): standard deviations of ODE's contact parameters around <Physics>'s values, and
+/// of the Gaussian noise added to each control dimension (controls lie in [-1, 1]).
+struct ContactUncertainty {
+  double friction = 0.0;
+  double erp = 0.0;
+  double cfm = 0.0;
+  double control = 0.0;
+  SourceLocation where;
 };
 
 /// A URDF model placed in the scene.
@@ -63,6 +76,8 @@ struct EnvironmentSource {
 
 struct ObjectInstance : ModelInstance {
   ObjectRole role = ObjectRole::Fixed;
+  /// The effective initial pose uncertainty: the object's own <Uncertainty>, else the problem's
+  /// default (top-level <Uncertainty x y yaw>); always zero for fixed objects.
   PoseUncertainty uncertainty;
   std::optional<EnvironmentSource> environment;  ///< set for sensed environments only
 };
@@ -145,6 +160,11 @@ struct Problem {
   RobotInstance robot;
   std::vector<ObjectInstance> objects;
   PhysicsSettings physics;
+  /// Top-level <Uncertainty x y yaw>: the default initial pose uncertainty of every movable
+  /// object and the target (already applied to ObjectInstance::uncertainty).
+  PoseUncertainty defaultPoseUncertainty;
+  /// Top-level <Uncertainty friction erp cfm control>.
+  ContactUncertainty uncertainty;
   InteractionConstraints interaction;
   KinodynamicLimits kinodynamics;
   Eigen::AlignedBox3d workspace;  ///< where the robot's goal link may go

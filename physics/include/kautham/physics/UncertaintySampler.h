@@ -6,17 +6,10 @@
 #include <Eigen/Core>
 
 #include "kautham/core/Problem.h"
+#include "kautham/physics/ContactParameters.h"
 #include "kautham/physics/WorldLayout.h"
 
 namespace kautham::physics {
-
-/// ODE's contact parameters, the paper's D = {mu, c, e}: sampled per particle around the
-/// <Physics> block's values.
-struct ContactParameters {
-  double friction = 0.6;
-  double erp = 0.2;
-  double cfm = 1e-5;
-};
 
 /// Draws the uncertain parts of a run (the paper's section III-C): object poses around their
 /// measured values, contact parameters around their approximations, control disturbances.

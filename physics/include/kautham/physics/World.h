@@ -7,6 +7,7 @@
 #include <ode/ode.h>
 
 #include "kautham/core/Problem.h"
+#include "kautham/physics/ContactParameters.h"
 #include "kautham/physics/OdeLibrary.h"
 #include "kautham/physics/WorldLayout.h"
 
@@ -48,6 +49,12 @@ class World {
   const std::vector<Actuator>& actuators() const { return actuators_; }
   const core::PhysicsSettings& settings() const { return settings_; }
 
+  /// The friction, ERP and CFM of every contact made from the next step on (a particle's
+  /// sampled D). Initially <Physics>'s values. Not part of the state: whoever changes them for
+  /// a run restores them afterwards (see physics::execute).
+  void setContactParameters(const ContactParameters& parameters);
+  const ContactParameters& contactParameters() const { return contact_; }
+
   void readState(double* state) const;
   void writeState(const double* state);
 
@@ -86,6 +93,7 @@ class World {
 
   std::shared_ptr<OdeLibrary> ode_;
   core::PhysicsSettings settings_;
+  ContactParameters contact_;  ///< used by collide(); settings_'s values until changed
   WorldLayout layout_;
   dWorldID world_ = nullptr;
   dSpaceID space_ = nullptr;

@@ -1,0 +1,388 @@
+// `kautham validate PROBLEM PLAN --runs N`: executes a plan open loop in N worlds sampled from
+// the problem's <Uncertainty> and reports the success rate with a confidence interval.
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "Commands.h"
+#include "PlanFile.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/core/Random.h"
+#include "kautham/physics/Execution.h"
+#include "kautham/physics/UncertaintySampler.h"
+
+namespace kautham::apps {
+
+namespace {
+
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+struct ValidateOptions {
+  std::string problem;
+  std::string plan;
+  std::size_t runs = 0;
+  std::uint64_t seed = 1;
+  std::string json;
+  std::vector<std::string> modelDirs;
+};
+
+/// What validate needs of a plan file (PlanFile.cpp's format).
+struct PlanControls {
+  std::string query;  ///< the query's name; empty: the first query
+  double propagationStepSize = 0.0;
+  std::vector<physics::ControlStep> controls;
+};
+
+/// Reads a plan file; every problem is an InputError naming the file and, as far as it can
+/// be found in the text, the line.
+class PlanReader {
+ public:
+  explicit PlanReader(fs::path file) : file_(std::move(file)) {}
+
+  PlanControls read() {
+    std::ifstream in(file_, std::ios::binary);
+    if (!in) throw core::InputError({file_, 0}, "cannot open the plan file");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    text_ = buffer.str();
+    json plan;
+    try {
+      plan = json::parse(text_);
+    } catch (const json::parse_error& e) {
+      throw core::InputError({file_, lineAt(e.byte == 0 ? 0 : e.byte - 1)},
+                             std::string("not a JSON plan file: ") + e.what());
+    }
+    if (!plan.is_object() || plan.value("format", json()) != "kautham-plan")
+      fail("", "not a kautham plan: \"format\" must be \"kautham-plan\"");
+    if (!plan.contains("format_version") || plan["format_version"] != kPlanFormatVersion)
+      fail("format_version",
+           fmt::format("plan format version {} is not supported; this kautham "
+                       "reads version {}",
+                       plan.value("format_version", json()).dump(), kPlanFormatVersion));
+    PlanControls result;
+    if (plan.contains("problem") && plan["problem"].is_object() &&
+        plan["problem"].contains("query")) {
+      if (!plan["problem"]["query"].is_string()) fail("query", "\"query\" must be a string");
+      result.query = plan["problem"]["query"].get<std::string>();
+    }
+    const json step = plan.value("propagation_step_size", json());
+    if (!step.is_number() || !(step.get<double>() > 0.0))
+      fail("propagation_step_size", "the plan needs a positive \"propagation_step_size\"");
+    result.propagationStepSize = step.get<double>();
+
+    if (!plan.contains("controls") || !plan["controls"].is_array())
+      fail("controls", "the plan needs a \"controls\" array");
+    const json& controls = plan["controls"];
+    for (std::size_t i = 0; i < controls.size(); ++i) {
+      const json& c = controls[i];
+      auto bad = [&](const std::string& what) {
+        throw core::InputError({file_, controlLine(i)}, fmt::format("controls[{}]: {}", i, what));
+      };
+      if (!c.is_object()) bad("expected an object with \"velocities\" and \"steps\"");
+      if (!c.contains("velocities") || !c["velocities"].is_array() || c["velocities"].empty())
+        bad("needs a \"velocities\" array of numbers (one per control)");
+      physics::ControlStep control;
+      for (const json& v : c["velocities"]) {
+        if (!v.is_number() || !std::isfinite(v.get<double>()))
+          bad("\"velocities\" holds something that is not a finite number: " + v.dump());
+        control.velocities.push_back(v.get<double>());
+      }
+      const json steps = c.value("steps", json());
+      if (!steps.is_number_unsigned() || steps.get<std::uint64_t>() == 0 ||
+          steps.get<std::uint64_t>() > 1000000)
+        bad("\"steps\" must be a whole number of propagation steps in [1, 1000000]");
+      control.steps = static_cast<unsigned>(steps.get<std::uint64_t>());
+      result.controls.push_back(std::move(control));
+    }
+    return result;
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    throw core::InputError({file_, key.empty() ? 1 : keyLine(key)}, message);
+  }
+  /// The line of the i-th control's velocities, for an error about its size.
+  int controlLine(std::size_t index) const {
+    std::size_t at = text_.find("\"controls\"");
+    if (at == std::string::npos) return 0;
+    const std::size_t key = at;
+    for (std::size_t n = 0; n <= index && at != std::string::npos; ++n)
+      at = text_.find('{', at + 1);
+    return lineAt(at == std::string::npos ? key : at);
+  }
+  const fs::path& file() const { return file_; }
+
+ private:
+  int keyLine(const std::string& key) const {
+    const std::size_t at = text_.find("\"" + key + "\"");
+    return at == std::string::npos ? 0 : lineAt(at);
+  }
+  int lineAt(std::size_t offset) const {
+    offset = std::min(offset, text_.size());
+    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + offset, '\n'));
+  }
+
+  fs::path file_;
+  std::string text_;
+};
+
+/// The reasons a run fails, as the report groups them.
+enum class Failure { GoalMissed, TargetTouched, ObjectFell, TooFast, Other };
+constexpr std::array<Failure, 5> kFailures{Failure::GoalMissed, Failure::TargetTouched,
+                                           Failure::ObjectFell, Failure::TooFast, Failure::Other};
+
+const char* label(Failure f) {
+  switch (f) {
+    case Failure::GoalMissed:
+      return "goal missed";
+    case Failure::TargetTouched:
+      return "target touched";
+    case Failure::ObjectFell:
+      return "object fell or tipped";
+    case Failure::TooFast:
+      return "too fast";
+    case Failure::Other:
+      return "other";
+  }
+  return "";
+}
+
+const char* key(Failure f) {
+  switch (f) {
+    case Failure::GoalMissed:
+      return "goal_missed";
+    case Failure::TargetTouched:
+      return "target_touched";
+    case Failure::ObjectFell:
+      return "object_fell_or_tipped";
+    case Failure::TooFast:
+      return "too_fast";
+    case Failure::Other:
+      return "other";
+  }
+  return "";
+}
+
+Failure classify(physics::Violation v) {
+  using physics::Violation;
+  switch (v) {
+    case Violation::None:
+      return Failure::GoalMissed;
+    case Violation::RobotTouchedTarget:
+    case Violation::TargetMoved:
+      return Failure::TargetTouched;
+    case Violation::ObjectTilted:
+    case Violation::ObjectOffSupport:
+      return Failure::ObjectFell;
+    case Violation::ObjectTooFast:
+    case Violation::JointTooFast:
+    case Violation::LinkTooFast:
+      return Failure::TooFast;
+    case Violation::SimulationDiverged:
+    case Violation::RobotTouchedFixed:
+    case Violation::OutsideWorkspace:
+    case Violation::JointLimit:
+      return Failure::Other;
+  }
+  return Failure::Other;
+}
+
+struct Interval {
+  double low = 0.0;
+  double high = 0.0;
+};
+
+/// Wilson's score interval for a binomial proportion (successes of runs) at 95 %.
+Interval wilson(std::size_t successes, std::size_t runs) {
+  constexpr double z = 1.959963984540054;  // the normal's 97.5 % quantile
+  const double n = static_cast<double>(runs);
+  const double p = static_cast<double>(successes) / n;
+  const double denominator = 1.0 + z * z / n;
+  const double centre = (p + z * z / (2.0 * n)) / denominator;
+  const double half = z / denominator * std::sqrt(p * (1.0 - p) / n + z * z / (4.0 * n * n));
+  return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+std::size_t findQuery(const core::Problem& problem, const std::string& name,
+                      const PlanReader& reader) {
+  if (name.empty()) return 0;
+  for (std::size_t q = 0; q < problem.queries.size(); ++q)
+    if (problem.queries[q].name == name) return q;
+  reader.fail("query", "the plan is for query '" + name + "', which " +
+                           problem.file.filename().string() + " does not have");
+}
+
+std::string describeUncertainty(const core::Problem& problem,
+                                const physics::UncertaintySampler& sampler) {
+  if (!sampler.hasUncertainty()) return "none (every standard deviation is zero)";
+  std::size_t uncertain = 0;
+  core::PoseUncertainty largest;
+  for (const core::ObjectInstance& o : problem.objects) {
+    if (o.uncertainty.isZero()) continue;
+    ++uncertain;
+    largest.x = std::max(largest.x, o.uncertainty.x);
+    largest.y = std::max(largest.y, o.uncertainty.y);
+    largest.yaw = std::max(largest.yaw, o.uncertainty.yaw);
+  }
+  const core::ContactUncertainty& u = problem.uncertainty;
+  return fmt::format(
+      "poses of {} objects (sd up to x {} m, y {} m, yaw {} rad); sd of friction {}, erp {}, "
+      "cfm {}; control sd {}",
+      uncertain, largest.x, largest.y, largest.yaw, u.friction, u.erp, u.cfm, u.control);
+}
+
+int runValidate(const ValidateOptions& options) {
+  std::vector<fs::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
+  const core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  PlanReader reader(options.plan);
+  const PlanControls plan = reader.read();
+  const std::size_t query = findQuery(problem, plan.query, reader);
+
+  physics::PropagationSettings settings;
+  settings.propagationStepSize = plan.propagationStepSize;
+  settings.minControlSteps = 1;
+  settings.maxControlSteps = 1;
+  for (const physics::ControlStep& c : plan.controls)
+    settings.maxControlSteps = std::max(settings.maxControlSteps, c.steps);
+  std::unique_ptr<physics::PlanningContext> owner;
+  try {
+    owner = std::make_unique<physics::PlanningContext>(problem, query, settings);
+  } catch (const std::invalid_argument& e) {
+    reader.fail("propagation_step_size", e.what());
+  }
+  physics::PlanningContext& context = *owner;
+  if (!context.startOverlaps().empty() || context.startViolation() != physics::Violation::None)
+    throw core::InputError(problem.queries[query].where,
+                           "the start state is invalid or things interpenetrate (see `kautham "
+                           "check`): there is nothing to validate");
+  const std::size_t controlSize = context.propagator().mapping().size();
+  for (std::size_t i = 0; i < plan.controls.size(); ++i)
+    if (plan.controls[i].velocities.size() != controlSize)
+      throw core::InputError(
+          {reader.file(), reader.controlLine(i)},
+          fmt::format("controls[{}] has {} values, but the robot of {} has {} controls", i,
+                      plan.controls[i].velocities.size(), problem.file.filename().string(),
+                      controlSize));
+
+  const physics::UncertaintySampler sampler(problem, context.layout());
+  const bool progress = isatty(STDERR_FILENO);
+  std::size_t successes = 0;
+  std::size_t rejectedStarts = 0;
+  std::map<Failure, std::size_t> failures;
+  std::map<physics::Violation, std::size_t> violations;
+  double distanceSum = 0.0;
+  json perRun = json::array();
+  for (std::size_t run = 0; run < options.runs; ++run) {
+    std::mt19937_64 rng(core::runSeed(options.seed, run));
+    const physics::ExecutionResult r = physics::execute(context, plan.controls, rng, true);
+    rejectedStarts += r.rejectedStarts;
+    distanceSum += r.finalGoalDistance;
+    perRun.push_back({{"reached_goal", r.reachedGoal},
+                      {"violation", physics::toString(r.firstViolation)},
+                      {"final_goal_distance", r.finalGoalDistance}});
+    if (r.reachedGoal) {
+      ++successes;
+    } else {
+      ++failures[classify(r.firstViolation)];
+      if (r.firstViolation != physics::Violation::None) ++violations[r.firstViolation];
+    }
+    if (progress) {
+      fmt::print(stderr, "\r  run {:>6}/{}  {} successes ", run + 1, options.runs, successes);
+      std::fflush(stderr);
+    }
+  }
+  if (progress) fmt::print(stderr, "\r{:60}\r", "");
+
+  const Interval ci = wilson(successes, options.runs);
+  const double rate = static_cast<double>(successes) / static_cast<double>(options.runs);
+  double motion = 0.0;
+  for (const physics::ControlStep& c : plan.controls) motion += c.steps * plan.propagationStepSize;
+  fmt::print("problem      {} ({}), query {}\n", problem.name, problem.file.string(),
+             problem.queries[query].name);
+  fmt::print("plan         {}: {} controls, {:.2f} s of motion\n", options.plan,
+             plan.controls.size(), motion);
+  fmt::print("uncertainty  {}\n", describeUncertainty(problem, sampler));
+  fmt::print("runs         {} (seed {})\n", options.runs, options.seed);
+  fmt::print("success      {}/{} = {:.1f} %, 95 % Wilson interval [{:.1f} %, {:.1f} %]\n",
+             successes, options.runs, 100.0 * rate, 100.0 * ci.low, 100.0 * ci.high);
+  fmt::print("failures     {}\n", options.runs - successes);
+  for (Failure f : kFailures) {
+    std::string detail;
+    for (const auto& [violation, count] : violations)
+      if (classify(violation) == f)
+        detail += fmt::format(", {} {}", physics::toString(violation), count);
+    fmt::print("  {:<22} {:>6}{}\n", label(f), failures[f],
+               detail.empty() ? "" : " (" + detail.substr(2) + ")");
+  }
+  fmt::print("goal distance {:.1f} cm on average at the end\n",
+             100.0 * distanceSum / static_cast<double>(options.runs));
+  if (rejectedStarts > 0)
+    fmt::print("starts       {} sampled starts redrawn (things interpenetrated)\n", rejectedStarts);
+
+  if (!options.json.empty()) {
+    json byReason = json::object();
+    for (Failure f : kFailures) byReason[key(f)] = failures[f];
+    json byViolation = json::object();
+    for (const auto& [violation, count] : violations)
+      byViolation[physics::toString(violation)] = count;
+    const json report = {
+        {"format", "kautham-validation"},
+        {"problem", {{"name", problem.name}, {"file", problem.file.string()}}},
+        {"query", problem.queries[query].name},
+        {"plan", options.plan},
+        {"runs", options.runs},
+        {"seed", options.seed},
+        {"successes", successes},
+        {"success_rate", rate},
+        {"confidence_interval",
+         {{"method", "wilson"}, {"level", 0.95}, {"low", ci.low}, {"high", ci.high}}},
+        {"failures", byReason},
+        {"violations", byViolation},
+        {"mean_final_goal_distance", distanceSum / static_cast<double>(options.runs)},
+        {"redrawn_starts", rejectedStarts},
+        {"results", perRun},
+    };
+    writeJsonFile(options.json, report);
+    fmt::print("wrote        {}\n", options.json);
+  }
+  return kExitSolved;
+}
+
+}  // namespace
+
+void addValidateCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<ValidateOptions>();
+  CLI::App* command = app.add_subcommand(
+      "validate",
+      "Execute a plan open loop in worlds sampled from the problem's <Uncertainty>: success rate "
+      "with a 95 % confidence interval, and why runs failed");
+  command->add_option("problem", options->problem, "problem file (XML)")->required();
+  command->add_option("plan", options->plan, "plan file (JSON, from `kautham plan -o`)")
+      ->required();
+  command->add_option("--runs", options->runs, "number of sampled executions")
+      ->required()
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+  command->add_option("--seed", options->seed, "random seed; run i draws from its own stream")
+      ->capture_default_str();
+  command->add_option("--json", options->json, "write the numbers to this JSON file");
+  command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->allow_extra_args(false);
+  command->footer(
+      "Exit codes: 0 it ran (whatever the success rate), 2 bad input.\n"
+      "Example: kautham validate problems/pusher_cans_5.xml out/plan.json --runs 100");
+  command->callback([options, &exitCode] {
+    exitCode = runReportingErrors([&] { return runValidate(*options); });
+  });
+}
+
+}  // namespace kautham::apps

@@ -1,0 +1,139 @@
+#include "kautham/physics/Execution.h"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "kautham/physics/UncertaintySampler.h"
+
+namespace kautham::physics {
+
+namespace {
+
+constexpr int kMaxStartDraws = 100;
+constexpr double kOverlapDepth = 0.002;  // m, as PlanningContext's start check
+
+/// Puts the world's contact parameters back when the run ends, however it ends.
+class ContactRestorer {
+ public:
+  explicit ContactRestorer(World& world) : world_(world), saved_(world.contactParameters()) {}
+  ~ContactRestorer() { world_.setContactParameters(saved_); }
+  ContactRestorer(const ContactRestorer&) = delete;
+  ContactRestorer& operator=(const ContactRestorer&) = delete;
+
+ private:
+  World& world_;
+  ContactParameters saved_;
+};
+
+/// The layout, shared without ownership: the context outlives everything made here.
+std::shared_ptr<const WorldLayout> borrowedLayout(const PlanningContext& context) {
+  return std::shared_ptr<const WorldLayout>(std::shared_ptr<const WorldLayout>(),
+                                            &context.layout());
+}
+
+/// Why a sampled start cannot be: things interpenetrate, or it breaks a constraint.
+bool startIsPossible(PlanningContext& context, const WorldValidityChecker& checker,
+                     std::vector<double>& start) {
+  World& world = context.world();
+  world.writeState(start.data());
+  const bool overlaps = !world.probeContacts(kOverlapDepth).empty();
+  const std::size_t flags = context.layout().flagsIndex();
+  start[flags] = world.takeEvents();
+  world.takeTouchedBodies();
+  const bool valid = checker.check(start.data()) == Violation::None;
+  start[flags] = 0.0;
+  return !overlaps && valid;
+}
+
+/// The goal of the query with a region given relative to an object moved as that object's
+/// sampled start pose is moved from its nominal one (none when nothing moves it).
+std::optional<GoalSpec> movedGoal(const PlanningContext& context, const double* start) {
+  const core::GoalRegion& goal = context.query().goal;
+  if (goal.isConfiguration() || goal.relativeTo.empty()) return std::nullopt;
+  const std::optional<int> object = context.problem().findObject(goal.relativeTo);
+  const WorldLayout& layout = context.layout();
+  for (std::size_t b = 0; object && b < layout.bodies.size(); ++b) {
+    if (layout.bodies[b].objectIndex != *object) continue;
+    const Eigen::Isometry3d move =
+        layout.linkPose(start, b) * layout.linkPose(context.startState().data(), b).inverse();
+    GoalSpec spec = context.goal().spec();
+    spec.position = move * spec.position;
+    if (spec.approach) spec.approach = (move.linear() * *spec.approach).normalized();
+    return spec;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>& controls,
+                        std::mt19937_64& rng, bool sampleUncertainty) {
+  const auto& si = context.spaceInformation();
+  const WorldLayout& layout = context.layout();
+  ContactRestorer restorer(context.world());
+  ExecutionResult result;
+  result.startState = context.startState();
+  result.contact = context.world().contactParameters();
+
+  const WorldValidityChecker* checker = &context.validityChecker();
+  const WorkspaceGoal* goal = &context.goal();
+  std::unique_ptr<WorldValidityChecker> sampledChecker;
+  std::unique_ptr<WorkspaceGoal> sampledGoal;
+  std::optional<UncertaintySampler> sampler;
+  if (sampleUncertainty) {
+    sampler.emplace(context.problem(), layout);
+    for (int draw = 0; draw < kMaxStartDraws; ++draw) {
+      result.startState = context.startState();
+      sampler->sampleInitialPoses(result.startState.data(), rng);
+      // The target's "has not moved" check measures from where it really starts.
+      sampledChecker = std::make_unique<WorldValidityChecker>(
+          si, borrowedLayout(context), context.problem(), result.startState.data());
+      if (startIsPossible(context, *sampledChecker, result.startState)) break;
+      ++result.rejectedStarts;
+    }
+    checker = sampledChecker.get();
+    if (const std::optional<GoalSpec> spec = movedGoal(context, result.startState.data())) {
+      sampledGoal = std::make_unique<WorkspaceGoal>(si, borrowedLayout(context), *spec);
+      goal = sampledGoal.get();
+    }
+    result.contact = sampler->sampleContact(rng);
+    context.world().setContactParameters(result.contact);
+  }
+
+  const double stepSize = si->getPropagationStepSize();
+  ompl::base::State* current = si->allocState();
+  ompl::base::State* next = si->allocState();
+  ompl::control::Control* control = si->allocControl();
+  double* values = WorldStateSpace::values(current);
+  double* applied = control->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
+  const std::size_t controlSize = context.propagator().mapping().size();
+  std::copy(result.startState.begin(), result.startState.end(), values);
+
+  for (const ControlStep& step : controls) {
+    if (result.firstViolation != Violation::None) break;
+    if (sampler)
+      sampler->perturbControl(step.velocities.data(), applied,
+                              std::min(controlSize, step.velocities.size()), rng);
+    else
+      std::copy(step.velocities.begin(), step.velocities.end(), applied);
+    for (unsigned i = 0; i < step.steps && result.firstViolation == Violation::None; ++i) {
+      context.propagator().propagate(current, control, stepSize, next);
+      si->copyState(current, next);
+      result.time += stepSize;
+      result.firstViolation = checker->check(values);
+    }
+  }
+  result.finalState.assign(values, values + si->getStateDimension());
+  si->freeControl(control);
+  si->freeState(current);
+  si->freeState(next);
+  result.finalGoalDistance = goal->distance(result.finalState.data());
+  result.reachedGoal =
+      result.firstViolation == Violation::None && goal->reached(result.finalState.data());
+  return result;
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,162 @@
+// `kautham validate`: a real plan from `kautham plan`, executed under sampled uncertainty.
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "TestPaths.h"
+#include "apps/CommandTestSupport.h"
+
+namespace kautham::apps {
+namespace {
+
+namespace fs = std::filesystem;
+
+using test::CommandRun;
+using test::kautham;
+
+nlohmann::json readJson(const fs::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+/// One plan for the whole suite: `kautham plan problems/pusher_cans_5.xml --seed 1`.
+class ValidateCommandTest : public test::TemporaryFolderTest {
+ protected:
+  static void SetUpTestSuite() {
+    fs::create_directories(planFolder());
+    const CommandRun run =
+        kautham("plan problems/pusher_cans_5.xml --seed 1 -o '" + plan().string() + "'");
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+  }
+  static void TearDownTestSuite() { fs::remove_all(planFolder()); }
+  static fs::path planFolder() {
+    return fs::temp_directory_path() /
+           ("kautham_validate_" +
+            std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+  }
+  static fs::path plan() { return planFolder() / "plan.json"; }
+  static std::string quoted(const fs::path& file) { return "'" + file.string() + "'"; }
+
+  /// A copy of the plan with its text edited.
+  fs::path editedPlan(const std::string& from, const std::string& to) {
+    std::string text = test::readFile(plan());
+    const auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    const fs::path file = folder / "edited.json";
+    test::writeFile(file, text);
+    return file;
+  }
+};
+
+TEST_F(ValidateCommandTest, WithoutUncertaintyEveryRunSucceeds) {
+  const CommandRun run =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(plan()) + " --runs 5");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("uncertainty  none"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("success      5/5 = 100.0 %, 95 % Wilson interval [56.6 %, 100.0 %]"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("failures     0\n"), std::string::npos) << run.output;
+}
+
+TEST_F(ValidateCommandTest, LargeUncertaintyMakesRunsFailAndCountsWhy) {
+  const fs::path json = folder / "validation.json";
+  const std::string command = "validate tests/data/pusher_cans_5_uncertain.xml " + quoted(plan()) +
+                              " --runs 40 --seed 3 --json " + quoted(json);
+  const CommandRun run = kautham(command);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const nlohmann::json report = readJson(json);
+  const int runs = report["runs"];
+  const int successes = report["successes"];
+  EXPECT_EQ(runs, 40);
+  EXPECT_LT(successes, 40) << run.output;
+  int failures = 0;
+  for (const auto& [reason, count] : report["failures"].items()) failures += count.get<int>();
+  EXPECT_EQ(failures, runs - successes);
+  int fromResults = 0;
+  for (const auto& r : report["results"]) fromResults += r["reached_goal"].get<bool>() ? 1 : 0;
+  EXPECT_EQ(fromResults, successes);
+  const double rate = report["success_rate"];
+  EXPECT_DOUBLE_EQ(rate, successes / 40.0);
+  EXPECT_LE(report["confidence_interval"]["low"].get<double>(), rate);
+  EXPECT_GE(report["confidence_interval"]["high"].get<double>(), rate);
+  for (const char* reason :
+       {"goal missed", "target touched", "object fell or tipped", "too fast", "other"})
+    EXPECT_NE(run.output.find("  " + std::string(reason)), std::string::npos) << reason;
+
+  // The same seed gives the same report, word for word.
+  const CommandRun again = kautham(command);
+  EXPECT_EQ(again.output, run.output);
+  EXPECT_EQ(readJson(json), report);
+}
+
+TEST_F(ValidateCommandTest, EachRunHasItsOwnStreamSoFewerRunsAreAPrefix) {
+  const fs::path few = folder / "few.json", many = folder / "many.json";
+  const std::string base =
+      "validate tests/data/pusher_cans_5_uncertain.xml " + quoted(plan()) + " --seed 9 ";
+  ASSERT_EQ(kautham(base + "--runs 4 --json " + quoted(few)).exitCode, 0);
+  ASSERT_EQ(kautham(base + "--runs 8 --json " + quoted(many)).exitCode, 0);
+  const nlohmann::json a = readJson(few)["results"], b = readJson(many)["results"];
+  ASSERT_EQ(a.size(), 4u);
+  ASSERT_EQ(b.size(), 8u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_EQ(a[i], b[i]) << i;
+  // Another seed draws other worlds.
+  const fs::path other = folder / "other.json";
+  ASSERT_EQ(kautham("validate tests/data/pusher_cans_5_uncertain.xml " + quoted(plan()) +
+                    " --seed 10 --runs 8 --json " + quoted(other))
+                .exitCode,
+            0);
+  EXPECT_NE(readJson(other)["results"], b);
+}
+
+TEST_F(ValidateCommandTest, MalformedPlanFilesExitTwoNamingFileAndLine) {
+  // A control with a negative number of steps: the error names the line of that control.
+  const fs::path badSteps = editedPlan("\"steps\": ", "\"steps\": -");
+  const CommandRun steps =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(badSteps) + " --runs 2");
+  EXPECT_EQ(steps.exitCode, 2) << steps.output;
+  EXPECT_NE(steps.output.find(badSteps.string() + ":"), std::string::npos) << steps.output;
+  EXPECT_NE(steps.output.find(": controls[0]: \"steps\" must be a whole number"), std::string::npos)
+      << steps.output;
+
+  const fs::path notJson = folder / "not.json";
+  test::writeFile(notJson, "{\n \"format\": \"kautham-plan\",\n \"controls\": [\n oops\n");
+  const CommandRun parse =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(notJson) + " --runs 2");
+  EXPECT_EQ(parse.exitCode, 2) << parse.output;
+  EXPECT_NE(parse.output.find(notJson.string() + ":4: not a JSON plan file"), std::string::npos)
+      << parse.output;
+
+  const fs::path noControls = editedPlan("\"controls\"", "\"kontrols\"");
+  const CommandRun missing =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(noControls) + " --runs 2");
+  EXPECT_EQ(missing.exitCode, 2) << missing.output;
+  EXPECT_NE(missing.output.find("the plan needs a \"controls\" array"), std::string::npos)
+      << missing.output;
+
+  // A plan for another robot: the number of controls does not match.
+  const fs::path wrongSize = editedPlan("\"velocities\": [", "\"velocities\": [0.1,");
+  const CommandRun size =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(wrongSize) + " --runs 2");
+  EXPECT_EQ(size.exitCode, 2) << size.output;
+  EXPECT_NE(size.output.find("controls[0] has 4 values, but the robot"), std::string::npos)
+      << size.output;
+}
+
+TEST_F(ValidateCommandTest, BadArgumentsExitTwo) {
+  EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml no/such/plan.json --runs 2").exitCode, 2);
+  EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml " + quoted(plan()) + " --runs 0").exitCode,
+            2);
+  EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml " + quoted(plan())).exitCode, 2);
+  EXPECT_EQ(kautham("validate tests/data/malformed/unknown_role.xml " + quoted(plan()) +
+                    " --runs 2 --model-dir models")
+                .exitCode,
+            2);
+}
+
+}  // namespace
+}  // namespace kautham::apps
