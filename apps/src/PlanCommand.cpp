@@ -74,6 +74,12 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
   fmt::print("tree      {} states, {} propagations, {} physics steps ({:.0f} steps/s)\n",
              stats.treeStates, stats.propagations, stats.physicsSteps,
              stats.physicsSteps / std::max(stats.planningTime, 1e-9));
+  if (!stats.plannerProperties.empty()) {
+    std::string properties;
+    for (const auto& [name, value] : stats.plannerProperties)
+      properties += (properties.empty() ? "" : ", ") + name + " " + value;
+    fmt::print("planner   {}\n", properties);
+  }
   if (outcome.controls.empty()) return;
   fmt::print("plan      {} controls, {:.2f} s of motion\n", outcome.controls.size(),
              replay.frames.back().time);

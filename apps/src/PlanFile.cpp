@@ -35,10 +35,20 @@ json trajectoryJson(const WorldLayout& layout, const physics::ReplayResult& repl
 
 json controlsJson(const planners::PlanOutcome& outcome, double stepSize) {
   json controls = json::array();
-  for (const physics::ControlStep& c : outcome.controls)
-    controls.push_back(
-        {{"velocities", c.velocities}, {"steps", c.steps}, {"duration", c.steps * stepSize}});
+  for (std::size_t i = 0; i < outcome.controls.size(); ++i) {
+    const physics::ControlStep& c = outcome.controls[i];
+    json control = {
+        {"velocities", c.velocities}, {"steps", c.steps}, {"duration", c.steps * stepSize}};
+    if (i < outcome.beliefs.size()) control["belief"] = outcome.beliefs[i];
+    controls.push_back(control);
+  }
   return controls;
+}
+
+json plannerPropertiesJson(const planners::PlanStatistics& statistics) {
+  json properties = json::object();
+  for (const auto& [name, value] : statistics.plannerProperties) properties[name] = value;
+  return properties;
 }
 
 json bodiesJson(const WorldLayout& layout) {
@@ -155,7 +165,8 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"statistics",
        {{"tree_states", outcome.statistics.treeStates},
         {"propagations", outcome.statistics.propagations},
-        {"physics_steps", outcome.statistics.physicsSteps}}},
+        {"physics_steps", outcome.statistics.physicsSteps},
+        {"planner", plannerPropertiesJson(outcome.statistics)}}},
       {"timing", {{"planning_time", outcome.statistics.planningTime}}},
       {"propagation_step_size", stepSize},
       {"controls", controlsJson(outcome, stepSize)},

@@ -66,6 +66,8 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
                                                           makeControlSpace(space_, mapping.size()));
   propagator_ = std::make_shared<PhysicsPropagator>(si_, world_, mapping);
   validity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data());
+  knowledgeValidity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data(),
+                                                              ValidityRules::KnowledgeOnly);
   si_->setStatePropagator(propagator_);
   si_->setStateValidityChecker(validity_);
   si_->setPropagationStepSize(settings.propagationStepSize);
@@ -90,6 +92,15 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
 
 EndEffectorProjection& PlanningContext::projection() {
   return static_cast<EndEffectorProjection&>(*space_->getDefaultProjection());
+}
+
+void PlanningContext::usePlanningRules(ValidityRules rules) {
+  const auto& checker = rules == ValidityRules::Full ? validity_ : knowledgeValidity_;
+  if (si_->getStateValidityChecker() == checker) return;
+  si_->setStateValidityChecker(checker);
+  // A new checker un-setups the space information; setting it up again re-registers the
+  // projection, so a planner sets its cell size after choosing its rules.
+  si_->setup();
 }
 
 }  // namespace kautham::physics

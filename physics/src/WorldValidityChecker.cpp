@@ -45,18 +45,23 @@ constexpr double kDropTolerance = 0.02;
 
 WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr& si,
                                            std::shared_ptr<const WorldLayout> layout,
-                                           const core::Problem& problem, const double* startState)
+                                           const core::Problem& problem, const double* startState,
+                                           ValidityRules rules)
     : StateValidityChecker(si),
       layout_(std::move(layout)),
       limits_(problem.interaction),
       robotLimits_(problem.kinodynamics),
+      rules_(rules),
       workspace_(problem.workspace) {
   if (auto support = problem.supportObject())
     supportShapes_ = core::shapesAtHome(problem.objects[*support]);
   startHeights_.resize(layout_->bodies.size());
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
     startHeights_[b] = WorldLayout::position(startState, b).z();
-    if (layout_->bodies[b].role == BodyRole::Target) targetBody_ = b;
+    if (layout_->bodies[b].role == BodyRole::Target) {
+      targetBody_ = b;
+      hasTarget_ = true;
+    }
   }
   targetStart_ = WorldLayout::position(startState, targetBody_);
 }
@@ -66,11 +71,21 @@ bool WorldValidityChecker::isValid(const ompl::base::State* state) const {
 }
 
 Violation WorldValidityChecker::check(const double* state) const {
+  return check(state, targetStart_);
+}
+
+Violation WorldValidityChecker::check(const double* state,
+                                      const Eigen::Vector3d& targetReference) const {
   const unsigned flags = layout_->flags(state);
   if (flags & kSimulationDiverged) return Violation::SimulationDiverged;
   if (flags & kRobotTouchedFixed) return Violation::RobotTouchedFixed;
   if (flags & kRobotTouchedTarget) return Violation::RobotTouchedTarget;
-  if ((WorldLayout::position(state, targetBody_) - targetStart_).norm() > limits_.targetTolerance)
+  if (rules_ == ValidityRules::KnowledgeOnly) {
+    if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
+    return checkRobot(state);
+  }
+  if (hasTarget_ && (WorldLayout::position(state, targetBody_) - targetReference).norm() >
+                        limits_.targetTolerance)
     return Violation::TargetMoved;
   if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
   if (Violation v = checkRobot(state); v != Violation::None) return v;

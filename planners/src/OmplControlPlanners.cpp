@@ -1,7 +1,10 @@
 // OMPL's own control planners, run over our physics (ompl::control, not ompl/extensions/ode).
 
+#include <ompl/control/planners/est/EST.h>
 #include <ompl/control/planners/kpiece/KPIECE1.h>
+#include <ompl/control/planners/pdst/PDST.h>
 #include <ompl/control/planners/rrt/RRT.h>
+#include <ompl/control/planners/sst/SST.h>
 
 #include "kautham/planners/PlannerRegistry.h"
 
@@ -76,11 +79,71 @@ PlannerRegistry::Entry rrt() {
           }};
 }
 
+PlannerRegistry::Entry sst() {
+  return {"SST",
+          "OMPL's Stable Sparse RRT over ODE: keeps the best-cost node in each neighbourhood",
+          {goalBias(0.05),
+           {"selection_radius",
+            ParameterType::Real,
+            0.2,
+            0.0,
+            100.0,
+            "m of end-effector distance within which the best node is expanded",
+            {}},
+           {"pruning_radius",
+            ParameterType::Real,
+            0.1,
+            0.0,
+            100.0,
+            "m of end-effector distance that one witness covers",
+            {}}},
+          [](const core::ParameterSet& p, physics::PlanningContext& context) {
+            auto planner = std::make_shared<ompl::control::SST>(context.spaceInformation());
+            planner->setGoalBias(p.real("goal_bias"));
+            planner->setSelectionRadius(p.real("selection_radius"));
+            planner->setPruningRadius(p.real("pruning_radius"));
+            return ompl::base::PlannerPtr(planner);
+          }};
+}
+
+PlannerRegistry::Entry est() {
+  return {"EST",
+          "OMPL's control EST over ODE: expands from sparsely covered end-effector cells",
+          {goalBias(0.05),
+           {"range",
+            ParameterType::Real,
+            0.0,
+            0.0,
+            100.0,
+            "longest motion a sampled target may ask for (0: OMPL's default)",
+            {}}},
+          [](const core::ParameterSet& p, physics::PlanningContext& context) {
+            auto planner = std::make_shared<ompl::control::EST>(context.spaceInformation());
+            planner->setGoalBias(p.real("goal_bias"));
+            if (p.real("range") > 0.0) planner->setRange(p.real("range"));
+            return ompl::base::PlannerPtr(planner);
+          }};
+}
+
+PlannerRegistry::Entry pdst() {
+  return {"PDST",
+          "OMPL's Path-Directed Subdivision Tree over ODE: subdivides the end-effector space",
+          {goalBias(0.05)},
+          [](const core::ParameterSet& p, physics::PlanningContext& context) {
+            auto planner = std::make_shared<ompl::control::PDST>(context.spaceInformation());
+            planner->setGoalBias(p.real("goal_bias"));
+            return ompl::base::PlannerPtr(planner);
+          }};
+}
+
 }  // namespace
 
 void registerOmplControlPlanners(PlannerRegistry& registry) {
   registry.add(kpiece());
   registry.add(rrt());
+  registry.add(sst());
+  registry.add(est());
+  registry.add(pdst());
 }
 
 }  // namespace kautham::planners

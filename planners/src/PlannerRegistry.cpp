@@ -6,6 +6,7 @@ PlannerRegistry& plannerRegistry() {
   static PlannerRegistry registry = [] {
     PlannerRegistry builtins;
     registerOmplControlPlanners(builtins);
+    registerKpieceFamily(builtins);
     return builtins;
   }();
   return registry;

@@ -10,6 +10,7 @@
 #include <ompl/util/Console.h>
 #include <ompl/util/RandomNumbers.h>
 
+#include "kautham/planners/BeliefReporter.h"
 #include "kautham/planners/PlannerRegistry.h"
 
 namespace kautham::planners {
@@ -84,6 +85,7 @@ std::uint32_t seedRandomness(std::uint32_t seed) {
 PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
                   const SolveHooks& hooks) {
   const PlannerRegistry::Entry& entry = plannerRegistry().at(request.planner);
+  context.usePlanningRules(physics::ValidityRules::Full);  // a planner may narrow them
   ompl::base::PlannerPtr planner = entry.create(request.parameters, context);
   context.problemDefinition()->clearSolutionPaths();
   context.goal().resetBestDistance();
@@ -105,6 +107,9 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
   planner->getPlannerData(data);
   outcome.statistics.treeStates = data.numVertices();
   outcome.tree = treeOf(data, context);
+  for (const auto& [name, value] : planner->getPlannerProgressProperties())
+    if (name.rfind("iterations", 0) != 0)  // not all planners count them the same way
+      outcome.statistics.plannerProperties.emplace_back(name.substr(0, name.find(' ')), value());
 
   const auto& pdef = context.problemDefinition();
   if (pdef->hasSolution()) {
@@ -115,6 +120,8 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
     const auto& si = context.spaceInformation();
     outcome.controls =
         controlsOf(path, si->getControlSpace()->getDimension(), si->getPropagationStepSize());
+    if (const auto* reporter = dynamic_cast<const BeliefReporter*>(planner.get()))
+      outcome.beliefs = reporter->solutionBeliefs();
   }
   return outcome;
 }

@@ -40,7 +40,11 @@ class PlanningContext {
   const ompl::control::SpaceInformationPtr& spaceInformation() const { return si_; }
   const ompl::base::ProblemDefinitionPtr& problemDefinition() const { return pdef_; }
   const PhysicsPropagator& propagator() const { return *propagator_; }
+  /// The full validity checker: replays and validation always judge with every constraint.
   const WorldValidityChecker& validityChecker() const { return *validity_; }
+  /// Which rules the planner's space information checks states with (o-KPIECE plans with
+  /// the knowledge rules only); Full until changed.
+  void usePlanningRules(ValidityRules rules);
   const WorkspaceGoal& goal() const { return *goal_; }
   WorkspaceGoal& goal() { return *goal_; }
   /// KPIECE's projection: the state space's default one (see WorldStateSpace).
@@ -62,6 +66,7 @@ class PlanningContext {
   ompl::base::ProblemDefinitionPtr pdef_;
   std::shared_ptr<PhysicsPropagator> propagator_;
   std::shared_ptr<WorldValidityChecker> validity_;
+  std::shared_ptr<WorldValidityChecker> knowledgeValidity_;
   std::shared_ptr<WorkspaceGoal> goal_;
   std::vector<double> start_;
   Violation startViolation_ = Violation::None;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <ompl/base/StateValidityChecker.h>
@@ -27,6 +28,13 @@ enum class Violation {
 };
 const char* toString(Violation violation);
 
+/// Which constraints a checker applies.
+enum class ValidityRules {
+  Full,           ///< every constraint (p-KPIECE, KPIECE, replays, validation)
+  KnowledgeOnly,  ///< o-KPIECE: only whom the robot may touch, the workspace and the robot's
+                  ///< own limits; no after-effects (object speed, tilt, support, target drift)
+};
+
 /// State validity for pushing: the robot may touch movable objects only, and what it pushes
 /// must stay upright, slow and on the support surface. Reads states through WorldLayout only,
 /// so a check costs a few arithmetic operations per object and no physics.
@@ -34,11 +42,19 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
  public:
   WorldValidityChecker(const ompl::base::SpaceInformationPtr& si,
                        std::shared_ptr<const WorldLayout> layout, const core::Problem& problem,
-                       const double* startState);
+                       const double* startState, ValidityRules rules = ValidityRules::Full);
 
   bool isValid(const ompl::base::State* state) const override;
   /// The first constraint the state breaks, or Violation::None.
   Violation check(const double* state) const;
+  /// As check(), with the target's reference position given: a run whose start was sampled
+  /// (the target's pose is uncertain) measures the target's drift from where it started.
+  Violation check(const double* state, const Eigen::Vector3d& targetReference) const;
+  /// Where the target stands at the start of the query.
+  const Eigen::Vector3d& targetStart() const { return targetStart_; }
+  std::optional<std::size_t> targetBody() const {
+    return hasTarget_ ? std::optional<std::size_t>(targetBody_) : std::nullopt;
+  }
 
  private:
   Violation checkObject(const double* state, std::size_t body) const;
@@ -47,6 +63,7 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   std::shared_ptr<const WorldLayout> layout_;
   core::InteractionConstraints limits_;
   core::KinodynamicLimits robotLimits_;
+  ValidityRules rules_;
   Eigen::AlignedBox3d workspace_;
   bool onSupport(const Eigen::Vector3d& position) const;
 
@@ -55,6 +72,7 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   std::vector<core::CollisionShape> supportShapes_;
   std::vector<double> startHeights_;  ///< per body: height of its centre at the start
   std::size_t targetBody_ = 0;
+  bool hasTarget_ = false;  ///< Kautham's own problems may have none
   Eigen::Vector3d targetStart_;
 };
 

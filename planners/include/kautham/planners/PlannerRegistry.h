@@ -17,4 +17,7 @@ PlannerRegistry& plannerRegistry();
 /// Registers OMPL's control planners (KPIECE, RRT) over our physics.
 void registerOmplControlPlanners(PlannerRegistry& registry);
 
+/// Registers p-KPIECE and o-KPIECE (the paper's planner and its baseline).
+void registerKpieceFamily(PlannerRegistry& registry);
+
 }  // namespace kautham::planners

@@ -27,6 +27,9 @@ struct PlanStatistics {
   std::size_t treeStates = 0;
   std::uint64_t propagations = 0;
   std::uint64_t physicsSteps = 0;
+  /// The planner's own counters (OMPL progress properties: p-KPIECE's cells, candidates,
+  /// particles, mean solution belief), as name and text.
+  std::vector<std::pair<std::string, std::string>> plannerProperties;
 };
 
 /// The planner's tree as the end effector saw it: where each state put the goal link.
@@ -41,6 +44,7 @@ struct PlanOutcome {
   bool approximate = false;
   double goalDistance = 0.0;
   std::vector<physics::ControlStep> controls;
+  std::vector<double> beliefs;  ///< per control, when the planner judges robustness (p-KPIECE)
   PlanStatistics statistics;
   SearchTree tree;
 };

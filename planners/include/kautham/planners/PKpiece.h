@@ -1,0 +1,84 @@
+#pragma once
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <ompl/base/Planner.h>
+#include <ompl/datastructures/GridB.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "kautham/physics/PlanningContext.h"
+#include "kautham/planners/BeliefReporter.h"
+#include "kautham/planners/MotionEvaluator.h"
+#include "kautham/planners/ObjectPoseBelief.h"
+
+namespace kautham::planners {
+
+/// The parameters of p-KPIECE (docs/planners.md gives each with the paper's name).
+struct PKpieceSettings {
+  unsigned candidates = 10;       ///< k: candidate motions sampled per expansion
+  unsigned particles = 15;        ///< n_p: particle motions per valid candidate
+  double displacement = 0.3;      ///< d: most an object may move in one particle motion (m)
+  double randomCandidate = 0.05;  ///< bias: probability of keeping a random valid candidate
+  double beliefWeight = 0.0;      ///< f: weight of the cell belief; <= 0: the number of cells
+  double kpieceSelection = 0.1;   ///< probability of choosing a cell's motion as KPIECE does
+  double goalBias = 0.05;         ///< probability of expanding one of the motions nearest the goal
+  double borderFraction = 0.8;    ///< probability of expanding an exterior cell
+  bool uncertainty = true;        ///< false: one nominal particle, nothing sampled ("pKP")
+};
+
+/// p-KPIECE (Muhayyuddin, Moll, Kavraki, Rosell, RA-L 2018; Algorithms 1 and 2): KPIECE whose
+/// expansions keep the most robust of k candidate motions, judged by n_p particle motions run
+/// under sampled object poses, contact parameters and control noise, and whose cell and motion
+/// choices prefer robust regions. Built on OMPL's GridB, not on KPIECE1 (whose selection code
+/// cannot be overridden). Each motion stores its end state, its control and duration, its
+/// belief and the pose distribution of the objects at its end (ObjectPoseBelief).
+class PKpiece : public ompl::base::Planner, public BeliefReporter {
+ public:
+  PKpiece(physics::PlanningContext& context, const PKpieceSettings& settings);
+  ~PKpiece() override;
+
+  ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
+  void clear() override;
+  void getPlannerData(ompl::base::PlannerData& data) const override;
+  std::vector<double> solutionBeliefs() const override { return solutionBeliefs_; }
+
+ private:
+  struct Motion;
+  struct CellData;
+  struct ByImportance {
+    bool operator()(const CellData* a, const CellData* b) const;
+  };
+  using Grid = ompl::GridB<CellData*, ByImportance>;
+  struct Candidate;
+
+  void addMotion(Motion* motion);
+  Motion* selectMotion();
+  Motion* selectInCell(const CellData& cell);
+  Motion* nearGoalMotion();
+  Motion* expand(Motion* from);
+  std::vector<Candidate> sampleCandidates(const Motion& from);
+  const Candidate* chooseCandidate(const std::vector<Candidate>& valid);
+  static void computeImportance(Grid::Cell* cell, void* planner);
+  void recordSolution(const Motion* end, bool exact, double distance);
+  std::uint64_t nextStreamSeed();
+
+  physics::PlanningContext& context_;
+  PKpieceSettings settings_;
+  MotionEvaluator evaluator_;
+  ompl::RNG rng_;
+  std::mt19937_64 fitRng_;    ///< EM seeding
+  std::uint64_t streamBase_;  ///< particle streams derive from this and a counter
+  std::uint64_t streamCounter_ = 0;
+  Grid grid_;  ///< over the end-effector projection (2 or 3 dimensions)
+  std::vector<std::unique_ptr<Motion>> motions_;
+  std::vector<std::unique_ptr<CellData>> cells_;
+  std::vector<Motion*> nearest_;  ///< the motions nearest the goal, nearest first
+  unsigned iteration_ = 1;
+  double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
+  std::uint64_t candidateCount_ = 0;
+  std::vector<double> solutionBeliefs_;
+};
+
+}  // namespace kautham::planners
