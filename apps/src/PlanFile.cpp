@@ -38,7 +38,7 @@ json controlsJson(const planners::PlanOutcome& outcome, double stepSize) {
   for (std::size_t i = 0; i < outcome.controls.size(); ++i) {
     const physics::ControlStep& c = outcome.controls[i];
     json control = {
-        {"velocities", c.velocities}, {"steps", c.steps}, {"duration", c.steps * stepSize}};
+        {"values", c.values}, {"steps", c.steps}, {"duration", c.steps * stepSize}};
     if (i < outcome.beliefs.size()) control["belief"] = outcome.beliefs[i];
     controls.push_back(control);
   }

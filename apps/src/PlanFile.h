@@ -11,7 +11,7 @@
 namespace kautham::apps {
 
 /// Version of the plan file format; readers reject files of another version.
-constexpr int kPlanFormatVersion = 1;
+constexpr int kPlanFormatVersion = 2;  // 2: controls hold normalized "values" (were "velocities")
 
 /// The plan file: the problem, planner, parameters and seed that produced it, statistics,
 /// the controls with durations, every collision shape (static ones in the world, the others

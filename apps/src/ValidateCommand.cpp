@@ -89,14 +89,14 @@ class PlanReader {
       auto bad = [&](const std::string& what) {
         throw core::InputError({file_, controlLine(i)}, fmt::format("controls[{}]: {}", i, what));
       };
-      if (!c.is_object()) bad("expected an object with \"velocities\" and \"steps\"");
-      if (!c.contains("velocities") || !c["velocities"].is_array() || c["velocities"].empty())
-        bad("needs a \"velocities\" array of numbers (one per control)");
+      if (!c.is_object()) bad("expected an object with \"values\" and \"steps\"");
+      if (!c.contains("values") || !c["values"].is_array() || c["values"].empty())
+        bad("needs a \"values\" array of numbers (one per control)");
       physics::ControlStep control;
-      for (const json& v : c["velocities"]) {
+      for (const json& v : c["values"]) {
         if (!v.is_number() || !std::isfinite(v.get<double>()))
-          bad("\"velocities\" holds something that is not a finite number: " + v.dump());
-        control.velocities.push_back(v.get<double>());
+          bad("\"values\" holds something that is not a finite number: " + v.dump());
+        control.values.push_back(v.get<double>());
       }
       const json steps = c.value("steps", json());
       if (!steps.is_number_unsigned() || steps.get<std::uint64_t>() == 0 ||
@@ -111,7 +111,7 @@ class PlanReader {
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     throw core::InputError({file_, key.empty() ? 1 : keyLine(key)}, message);
   }
-  /// The line of the i-th control's velocities, for an error about its size.
+  /// The line of the i-th control's values, for an error about its size.
   int controlLine(std::size_t index) const {
     std::size_t at = text_.find("\"controls\"");
     if (at == std::string::npos) return 0;
@@ -267,11 +267,11 @@ int runValidate(const ValidateOptions& options) {
                            "check`): there is nothing to validate");
   const std::size_t controlSize = context.propagator().mapping().size();
   for (std::size_t i = 0; i < plan.controls.size(); ++i)
-    if (plan.controls[i].velocities.size() != controlSize)
+    if (plan.controls[i].values.size() != controlSize)
       throw core::InputError(
           {reader.file(), reader.controlLine(i)},
           fmt::format("controls[{}] has {} values, but the robot of {} has {} controls", i,
-                      plan.controls[i].velocities.size(), problem.file.filename().string(),
+                      plan.controls[i].values.size(), problem.file.filename().string(),
                       controlSize));
 
   const physics::UncertaintySampler sampler(problem, context.layout());

@@ -115,10 +115,10 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
   for (const ControlStep& step : controls) {
     if (result.firstViolation != Violation::None) break;
     if (sampler)
-      sampler->perturbControl(step.velocities.data(), applied,
-                              std::min(controlSize, step.velocities.size()), rng);
+      sampler->perturbControl(step.values.data(), applied,
+                              std::min(controlSize, step.values.size()), rng);
     else
-      std::copy(step.velocities.begin(), step.velocities.end(), applied);
+      std::copy(step.values.begin(), step.values.end(), applied);
     for (unsigned i = 0; i < step.steps && result.firstViolation == Violation::None; ++i) {
       context.propagator().propagate(current, control, stepSize, next);
       si->copyState(current, next);

@@ -19,7 +19,7 @@ ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& co
   result.frames.push_back({0.0, context.startState(), Violation::None, {}});
   double time = 0.0;
   for (const ControlStep& step : controls) {
-    std::copy(step.velocities.begin(), step.velocities.end(), velocities);
+    std::copy(step.values.begin(), step.values.end(), velocities);
     for (unsigned i = 0; i < step.steps && result.firstViolation == Violation::None; ++i) {
       context.world().takeTouchedBodies();
       context.propagator().propagate(current, control, stepSize, next);

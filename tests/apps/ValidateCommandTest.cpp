@@ -139,7 +139,7 @@ TEST_F(ValidateCommandTest, MalformedPlanFilesExitTwoNamingFileAndLine) {
       << missing.output;
 
   // A plan for another robot: the number of controls does not match.
-  const fs::path wrongSize = editedPlan("\"velocities\": [", "\"velocities\": [0.1,");
+  const fs::path wrongSize = editedPlan("\"values\": [", "\"values\": [0.1,");
   const CommandRun size =
       kautham("validate problems/pusher_cans_5.xml " + quoted(wrongSize) + " --runs 2");
   EXPECT_EQ(size.exitCode, 2) << size.output;

@@ -255,20 +255,20 @@ TEST_F(ViewCommandTest, MalformedPlansExitTwoNamingTheFile) {
   expectRejected(R"({"format": "kautham-plan", "format_version": 0, "bodies": [], "shapes": [],
                      "frames": []})",
                  "plan format version 0 is not supported");
-  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [], "shapes": []})",
+  expectRejected(R"({"format": "kautham-plan", "format_version": 2, "bodies": [], "shapes": []})",
                  "no \"frames\"");
-  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [],
+  expectRejected(R"({"format": "kautham-plan", "format_version": 2, "bodies": [],
                      "shapes": [{"type": "box", "size": [1, 1, 1], "body": null,
                                  "pose": [0, 0, 0, 1, 0, 0, 0]}],
                      "frames": [{"t": 0, "poses": [[0, 0, 0, 1, 0, 0, 0]]}]})",
                  "one pose per body");
-  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [],
+  expectRejected(R"({"format": "kautham-plan", "format_version": 2, "bodies": [],
                      "shapes": [{"type": "mesh", "vertices": [0, 0, 0, 1, 0, 0, 0, 1, 0],
                                  "triangles": [0, 1, 3], "body": null,
                                  "pose": [0, 0, 0, 1, 0, 0, 0]}],
                      "frames": [{"t": 0, "poses": []}]})",
                  "shapes[0] is a mesh without \"triangles\" (three indices below 3");
-  expectRejected(R"({"format": "kautham-plan", "format_version": 1, "bodies": [],
+  expectRejected(R"({"format": "kautham-plan", "format_version": 2, "bodies": [],
                      "shapes": [{"type": "mesh", "triangles": [0, 1, 2], "body": null,
                                  "pose": [0, 0, 0, 1, 0, 0, 0]}],
                      "frames": [{"t": 0, "poses": []}]})",

@@ -121,7 +121,7 @@ Problem makeScene(const Problem& base, int cans) {
 
 /// Joint velocity targets (x, y, yaw) held for a number of physics steps.
 struct Segment {
-  std::vector<double> velocities;
+  std::vector<double> velocities;  ///< joint velocity targets, one per actuator
   unsigned steps = 0;
 };
 
@@ -252,7 +252,7 @@ class ChainedRunner {
     const auto& propagator = context_.propagator();
     const auto& checker = context_.validityChecker();
     const double duration = si_->getPropagationStepSize();
-    double* velocities = control_->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
+    double* controls = control_->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
     const std::vector<double>& start = context_.startState();
     std::copy(start.begin(), start.end(), WorldStateSpace::values(from_));
     const unsigned long long stepsBefore = propagator.counters().physicsSteps;
@@ -261,7 +261,9 @@ class ChainedRunner {
     const Clock::time_point begin = Clock::now();
     for (std::size_t k = 0; k < segments.size(); ++k) {
       const Segment& s = segments[k];
-      std::copy(s.velocities.begin(), s.velocities.end(), velocities);
+      // The planner's controls that ask for the segment's joint velocities.
+      const std::vector<double> u = propagator.mapping().controlsFor(s.velocities);
+      std::copy(u.begin(), u.end(), controls);
       const unsigned calls = s.steps / stepsPerCall_;
       for (unsigned i = 0; i < calls; ++i) {
         if (inputs) {

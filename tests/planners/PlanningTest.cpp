@@ -62,7 +62,7 @@ TEST(PlanningTest, SameSeedGivesTheSamePlan) {
   ASSERT_TRUE(first.outcome.solved);
   ASSERT_EQ(first.outcome.controls.size(), second.outcome.controls.size());
   for (std::size_t i = 0; i < first.outcome.controls.size(); ++i) {
-    EXPECT_EQ(first.outcome.controls[i].velocities, second.outcome.controls[i].velocities);
+    EXPECT_EQ(first.outcome.controls[i].values, second.outcome.controls[i].values);
     EXPECT_EQ(first.outcome.controls[i].steps, second.outcome.controls[i].steps);
   }
   EXPECT_EQ(first.outcome.statistics.propagations, second.outcome.statistics.propagations);

@@ -10,7 +10,7 @@ namespace kautham::physics {
 
 /// One control of a plan: joint velocity targets held for `steps` propagation steps.
 struct ControlStep {
-  std::vector<double> velocities;
+  std::vector<double> values;  ///< the normalized control, one number per control in [-1, 1]
   unsigned steps = 0;
 };
 
