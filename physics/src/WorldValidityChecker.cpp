@@ -58,7 +58,7 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
     startHeights_[b] = WorldLayout::position(startState, b).z();
     if (layout_->bodies[b].role == BodyRole::Target) targetBody_ = b;
   }
-  targetStart_ = WorldLayout::position(startState, targetBody_);
+  if (targetBody_) targetStart_ = WorldLayout::position(startState, *targetBody_);
 }
 
 bool WorldValidityChecker::isValid(const ompl::base::State* state) const {
@@ -70,7 +70,8 @@ Violation WorldValidityChecker::check(const double* state) const {
   if (flags & kSimulationDiverged) return Violation::SimulationDiverged;
   if (flags & kRobotTouchedFixed) return Violation::RobotTouchedFixed;
   if (flags & kRobotTouchedTarget) return Violation::RobotTouchedTarget;
-  if ((WorldLayout::position(state, targetBody_) - targetStart_).norm() > limits_.targetTolerance)
+  if (targetBody_ &&
+      (WorldLayout::position(state, *targetBody_) - targetStart_).norm() > limits_.targetTolerance)
     return Violation::TargetMoved;
   if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
   if (Violation v = checkRobot(state); v != Violation::None) return v;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <ompl/base/StateValidityChecker.h>
@@ -53,8 +54,8 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// The support's shapes seen from above: an object is on the support when its centre is
   /// over one of them (boxes are rectangles turned with their yaw, the rest discs).
   std::vector<core::CollisionShape> supportShapes_;
-  std::vector<double> startHeights_;  ///< per body: height of its centre at the start
-  std::size_t targetBody_ = 0;
+  std::vector<double> startHeights_;       ///< per body: height of its centre at the start
+  std::optional<std::size_t> targetBody_;  ///< none in Kautham files without roles
   Eigen::Vector3d targetStart_;
 };
 
