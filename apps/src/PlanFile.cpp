@@ -37,8 +37,7 @@ json controlsJson(const planners::PlanOutcome& outcome, double stepSize) {
   json controls = json::array();
   for (std::size_t i = 0; i < outcome.controls.size(); ++i) {
     const physics::ControlStep& c = outcome.controls[i];
-    json control = {
-        {"values", c.values}, {"steps", c.steps}, {"duration", c.steps * stepSize}};
+    json control = {{"values", c.values}, {"steps", c.steps}, {"duration", c.steps * stepSize}};
     if (i < outcome.beliefs.size()) control["belief"] = outcome.beliefs[i];
     controls.push_back(control);
   }

@@ -487,17 +487,27 @@ class ProblemReader {
     return values;
   }
 
-  /// The robot's deepest link: what a configuration goal's progress is measured by.
+  /// The robot's deepest link: what a configuration goal's progress is measured by. Depth
+  /// counts the joints the control set moves (a held finger is no deeper than the palm), then
+  /// all joints; of equally deep links the last in the file wins (a tool frame after fingers).
   std::string tipLink() const {
     const KinematicModel& model = problem_.robot.model;
+    const std::vector<int> movable = model.movableJoints();
+    auto controlled = [&](int joint) {
+      const auto dof = std::find(movable.begin(), movable.end(), joint) - movable.begin();
+      return dof < static_cast<long>(movable.size()) &&
+             problem_.robot.controls.moves(static_cast<std::size_t>(dof));
+    };
     std::size_t best = static_cast<std::size_t>(model.rootLink);
-    int bestDepth = -1;
+    std::pair<int, int> bestDepth{-1, -1};
     for (std::size_t l = 0; l < model.links.size(); ++l) {
-      int depth = 0;
+      std::pair<int, int> depth{0, 0};
       for (int j = model.links[l].parentJoint; j >= 0;
-           j = model.links[static_cast<std::size_t>(model.joints[j].parentLink)].parentJoint)
-        depth += model.joints[j].isMovable() ? 1 : 0;
-      if (depth > bestDepth) {
+           j = model.links[static_cast<std::size_t>(model.joints[j].parentLink)].parentJoint) {
+        depth.first += controlled(j) ? 1 : 0;
+        depth.second += 1;
+      }
+      if (depth >= bestDepth) {
         bestDepth = depth;
         best = l;
       }

@@ -58,12 +58,9 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
   startHeights_.resize(layout_->bodies.size());
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
     startHeights_[b] = WorldLayout::position(startState, b).z();
-    if (layout_->bodies[b].role == BodyRole::Target) {
-      targetBody_ = b;
-      hasTarget_ = true;
-    }
+    if (layout_->bodies[b].role == BodyRole::Target) targetBody_ = b;
   }
-  targetStart_ = WorldLayout::position(startState, targetBody_);
+  if (targetBody_) targetStart_ = WorldLayout::position(startState, *targetBody_);
 }
 
 bool WorldValidityChecker::isValid(const ompl::base::State* state) const {
@@ -84,8 +81,8 @@ Violation WorldValidityChecker::check(const double* state,
     if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
     return checkRobot(state);
   }
-  if (hasTarget_ && (WorldLayout::position(state, targetBody_) - targetReference).norm() >
-                        limits_.targetTolerance)
+  if (targetBody_ && (WorldLayout::position(state, *targetBody_) - targetReference).norm() >
+                         limits_.targetTolerance)
     return Violation::TargetMoved;
   if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
   if (Violation v = checkRobot(state); v != Violation::None) return v;

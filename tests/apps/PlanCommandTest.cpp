@@ -55,6 +55,31 @@ TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
   EXPECT_EQ(plan["shapes"].size(), 10u);
 }
 
+// Kautham's own format (problems/kautham/): no roles, no target, configuration goals.
+TEST_F(PlanCommandTest, KauthamFormProblemsLoadAndPlan) {
+  for (const std::string name : {"sphere_cubes", "kuka_table"}) {
+    SCOPED_TRACE(name);
+    const std::string problem = "problems/kautham/" + name + ".xml";
+    const CommandRun check = kautham("check " + problem);
+    ASSERT_EQ(check.exitCode, 0) << check.output;
+    EXPECT_NE(check.output.find("start valid"), std::string::npos) << check.output;
+    const fs::path planFile = folder / (name + ".json");
+    const CommandRun run =
+        kautham("plan " + problem + " --seed 1 --time 20 -o " + planFile.string());
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    EXPECT_NE(run.output.find("solved    yes"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("reaches the goal"), std::string::npos) << run.output;
+    const nlohmann::json plan = readJson(planFile);
+    EXPECT_EQ(plan["planner"]["name"], "KPIECE");
+    EXPECT_TRUE(plan["result"]["solved"].get<bool>());
+    EXPECT_TRUE(plan["result"]["replay"]["reached_goal"].get<bool>());
+    EXPECT_FALSE(plan["controls"].empty());
+  }
+  // The sphere cannot pass the cubes without pushing them.
+  const nlohmann::json sphere = readJson(folder / "sphere_cubes.json");
+  EXPECT_FALSE(sphere["result"]["replay"]["moved_objects"].empty());
+}
+
 TEST_F(PlanCommandTest, SameCommandTwiceGivesTheSamePlanFile) {
   const fs::path a = folder / "a.json";
   const fs::path b = folder / "b.json";

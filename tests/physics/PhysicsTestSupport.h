@@ -16,7 +16,10 @@ namespace kautham::test {
 class ContextFixture {
  public:
   explicit ContextFixture(const std::string& problemFile)
-      : problem(core::loadProblem(repoFile(problemFile))),
+      : ContextFixture(core::loadProblem(repoFile(problemFile))) {}
+  /// On a problem edited in memory (another control set, another goal).
+  explicit ContextFixture(core::Problem edited)
+      : problem(std::move(edited)),
         context(problem, 0, physics::PropagationSettings{}),
         state(context.startState()) {}
 

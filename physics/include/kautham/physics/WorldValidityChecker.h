@@ -52,9 +52,7 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   Violation check(const double* state, const Eigen::Vector3d& targetReference) const;
   /// Where the target stands at the start of the query.
   const Eigen::Vector3d& targetStart() const { return targetStart_; }
-  std::optional<std::size_t> targetBody() const {
-    return hasTarget_ ? std::optional<std::size_t>(targetBody_) : std::nullopt;
-  }
+  std::optional<std::size_t> targetBody() const { return targetBody_; }
 
  private:
   Violation checkObject(const double* state, std::size_t body) const;
@@ -70,9 +68,8 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// The support's shapes seen from above: an object is on the support when its centre is
   /// over one of them (boxes are rectangles turned with their yaw, the rest discs).
   std::vector<core::CollisionShape> supportShapes_;
-  std::vector<double> startHeights_;  ///< per body: height of its centre at the start
-  std::size_t targetBody_ = 0;
-  bool hasTarget_ = false;  ///< Kautham's own problems may have none
+  std::vector<double> startHeights_;       ///< per body: height of its centre at the start
+  std::optional<std::size_t> targetBody_;  ///< none in Kautham files without roles
   Eigen::Vector3d targetStart_;
 };
 
