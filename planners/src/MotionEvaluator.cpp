@@ -54,6 +54,7 @@ NominalRun MotionEvaluator::runNominal(const double* start, const double* contro
     if (!step(run.end.data(), control, next.data(), context_.validityChecker().targetStart()))
       break;
     run.end.swap(next);
+    run.states.push_back(run.end);
     run.steps = i + 1;
     if (context_.goal().reached(run.end.data())) {
       run.reachedGoal = true;

@@ -62,6 +62,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()) {
   specs_.approximateSolutions = true;
+  scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
   addPlannerProgressProperty("cells INTEGER", [this] { return std::to_string(cells_.size()); });
   addPlannerProgressProperty("candidates INTEGER",
@@ -76,7 +77,10 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   });
 }
 
-PKpiece::~PKpiece() { clear(); }
+PKpiece::~PKpiece() {
+  clear();
+  si_->freeState(scratch_);
+}
 
 void PKpiece::clear() {
   Planner::clear();
@@ -213,18 +217,56 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
   const std::vector<Candidate> valid = sampleCandidates(*from);
   const Candidate* chosen = chooseCandidate(valid);
   if (!chosen) return nullptr;
+  const double* start = physics::WorldStateSpace::values(from->state);
+  const auto endPoses = from->poses->afterMotion(
+      evaluator_.objectBodies(), start, chosen->run.end.data(), chosen->verdict.ends, fitRng_);
+  // As KPIECE does, the kept motion is cut where its end effector changes cell: each piece is
+  // a motion of the tree, so one expansion can cover several cells.
+  // Pieces before the end carry the parent's pose distribution while no object has moved yet,
+  // and the end's once one has (the particles tell only how the motion ends).
+  const std::vector<std::vector<double>>& states = chosen->run.states;
+  Motion* parent = from;
+  unsigned pieceStart = 0;
+  for (unsigned i = 0; i < states.size(); ++i) {
+    const bool last = i + 1 == states.size();
+    if (!last && cellOf(states[i]) == cellOf(states[i + 1])) continue;
+    const bool untouched = !last && !objectsMoved(start, states[i].data());
+    parent = addPiece(parent, *chosen, states[i], i + 1 - pieceStart,
+                      untouched ? from->poses : endPoses);
+    pieceStart = i + 1;
+  }
+  return parent;
+}
+
+PKpiece::Grid::Coord PKpiece::cellOf(const std::vector<double>& state) const {
+  std::copy(state.begin(), state.end(), physics::WorldStateSpace::values(scratch_));
+  Grid::Coord coord(context_.projection().getDimension());
+  context_.projection().computeCoordinates(scratch_, coord);
+  return coord;
+}
+
+bool PKpiece::objectsMoved(const double* start, const double* state) const {
+  constexpr double kMoved = 0.001;  // m
+  for (std::size_t b : evaluator_.objectBodies())
+    if ((physics::WorldLayout::position(state, b) - physics::WorldLayout::position(start, b))
+            .norm() > kMoved)
+      return true;
+  return false;
+}
+
+PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
+                                   const std::vector<double>& end, unsigned steps,
+                                   std::shared_ptr<const ObjectPoseBelief> poses) {
   auto motion = std::make_unique<Motion>();
   motion->state = si_->allocState();
   double* values = physics::WorldStateSpace::values(motion->state);
-  std::copy(chosen->run.end.begin(), chosen->run.end.end(), values);
-  motion->control = chosen->control;
-  motion->steps = chosen->run.steps;
-  motion->parent = from;
-  motion->belief = chosen->verdict.belief();
+  std::copy(end.begin(), end.end(), values);
+  motion->control = chosen.control;
+  motion->steps = steps;
+  motion->parent = parent;
+  motion->belief = chosen.verdict.belief();
   motion->goalDistance = context_.goal().distance(values);
-  motion->poses = from->poses->afterMotion(evaluator_.objectBodies(),
-                                           physics::WorldStateSpace::values(from->state), values,
-                                           chosen->verdict.ends, fitRng_);
+  motion->poses = std::move(poses);
   Motion* raw = motion.get();
   motions_.push_back(std::move(motion));
   addMotion(raw);

@@ -36,7 +36,7 @@ PlannerRegistry::Entry pKpiece() {
           "under pose, contact and control uncertainty",
           {{"candidates",
             ParameterType::Integer,
-            10,
+            5,
             1,
             1000,
             "k: candidate motions sampled per expansion",

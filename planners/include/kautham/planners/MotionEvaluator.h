@@ -15,7 +15,8 @@ namespace kautham::planners {
 /// A candidate motion run nominally: the mean contact parameters, the exact control and the
 /// start state as the tree has it.
 struct NominalRun {
-  std::vector<double> end;   ///< the last valid state
+  std::vector<double> end;                  ///< the last valid state
+  std::vector<std::vector<double>> states;  ///< the state after each valid step (back() == end)
   unsigned steps = 0;        ///< valid propagation steps (0: the first step was invalid)
   bool reachedGoal = false;  ///< the run stopped at the first step inside the goal
 };

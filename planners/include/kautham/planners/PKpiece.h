@@ -17,7 +17,7 @@ namespace kautham::planners {
 
 /// The parameters of p-KPIECE (docs/planners.md gives each with the paper's name).
 struct PKpieceSettings {
-  unsigned candidates = 10;       ///< k: candidate motions sampled per expansion
+  unsigned candidates = 5;        ///< k: candidate motions sampled per expansion
   unsigned particles = 15;        ///< n_p: particle motions per valid candidate
   double displacement = 0.3;      ///< d: most an object may move in one particle motion (m)
   double randomCandidate = 0.05;  ///< bias: probability of keeping a random valid candidate
@@ -57,7 +57,12 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter {
   Motion* selectMotion();
   Motion* selectInCell(const CellData& cell);
   Motion* nearGoalMotion();
+  /// Grows the tree from `from`; returns the last motion added, or null.
   Motion* expand(Motion* from);
+  Motion* addPiece(Motion* parent, const Candidate& chosen, const std::vector<double>& end,
+                   unsigned steps, std::shared_ptr<const ObjectPoseBelief> poses);
+  Grid::Coord cellOf(const std::vector<double>& state) const;
+  bool objectsMoved(const double* start, const double* state) const;
   std::vector<Candidate> sampleCandidates(const Motion& from);
   const Candidate* chooseCandidate(const std::vector<Candidate>& valid);
   static void computeImportance(Grid::Cell* cell, void* planner);
@@ -79,6 +84,7 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter {
   double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
   std::uint64_t candidateCount_ = 0;
   std::vector<double> solutionBeliefs_;
+  ompl::base::State* scratch_ = nullptr;  ///< for projecting raw states
 };
 
 }  // namespace kautham::planners
