@@ -123,7 +123,8 @@ Violation WorldValidityChecker::checkRobot(const double* state) const {
         !(q >= joints[j].lower - tolerance && q <= joints[j].upper + tolerance))
       return Violation::JointLimit;
     const double rate = state[layout_->jointVelocityIndex() + j];
-    if (!(std::abs(rate) <= joints[j].maxVelocity * robotLimits_.jointSpeedFactor))
+    if (!joints[j].held &&
+        !(std::abs(rate) <= joints[j].maxVelocity * robotLimits_.jointSpeedFactor))
       return Violation::JointTooFast;
   }
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b)

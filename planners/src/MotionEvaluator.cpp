@@ -95,6 +95,7 @@ ParticleVerdict MotionEvaluator::runParticles(const double* start, const double*
   const physics::ContactParameters mean = world.contactParameters();
   unsigned validStates = 0;
   unsigned validInteractions = 0;
+  unsigned inGoal = 0;
   std::vector<double> noisy(controlSize_);
   std::vector<double> sampledStart(start, start + stateSize_);
   std::vector<double> next(stateSize_);
@@ -112,6 +113,7 @@ ParticleVerdict MotionEvaluator::runParticles(const double* start, const double*
       state.swap(next);
     }
     validStates += valid ? 1 : 0;
+    inGoal += valid && context_.goal().reached(state.data()) ? 1 : 0;
     validInteractions += displacementWithinLimit(sampledStart.data(), state.data()) ? 1 : 0;
     verdict.ends.push_back(std::move(state));
   }
@@ -119,6 +121,7 @@ ParticleVerdict MotionEvaluator::runParticles(const double* start, const double*
   particleCount_ += particles;
   verdict.stateValidity = static_cast<double>(validStates) / particles;
   verdict.interaction = static_cast<double>(validInteractions) / particles;
+  verdict.goal = static_cast<double>(inGoal) / particles;
   return verdict;
 }
 

@@ -29,6 +29,7 @@ struct PKpiece::Motion {
   std::shared_ptr<const ObjectPoseBelief> poses;
   double goalDistance = 0.0;
   CellData* cell = nullptr;
+  bool reachesGoal = false;  ///< in the goal, and enough of its particles were too
 };
 
 struct PKpiece::CellData {
@@ -199,12 +200,16 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
   return valid;
 }
 
+bool PKpiece::reachesGoal(const Candidate& c) const {
+  return c.run.reachedGoal && c.verdict.goal >= settings_.goalConfidence;
+}
+
 const PKpiece::Candidate* PKpiece::chooseCandidate(const std::vector<Candidate>& valid) {
   if (valid.empty()) return nullptr;
   // A candidate that reaches the goal ends the search: the most robust of those is kept.
   const Candidate* best = nullptr;
   for (const Candidate& c : valid)
-    if (c.run.reachedGoal && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+    if (reachesGoal(c) && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
   if (best) return best;
   if (rng_.uniform01() < settings_.randomCandidate)
     return &valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
@@ -267,6 +272,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->belief = chosen.verdict.belief();
   motion->goalDistance = context_.goal().distance(values);
   motion->poses = std::move(poses);
+  motion->reachesGoal = reachesGoal(chosen) && &end == &chosen.run.states.back();
   Motion* raw = motion.get();
   motions_.push_back(std::move(motion));
   addMotion(raw);
@@ -316,7 +322,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     cell->score *= added ? kGoodScoreFactor : kBadScoreFactor;
     ++iteration_;
     grid_.updateAll();  // beliefs are normalised over all cells: every importance changes
-    if (added && context_.goal().reached(physics::WorldStateSpace::values(added->state))) {
+    if (added && added->reachesGoal) {
       recordSolution(added, true, added->goalDistance);
       return ompl::base::PlannerStatus::EXACT_SOLUTION;
     }

@@ -83,6 +83,13 @@ PlannerRegistry::Entry pKpiece() {
             1,
             "sample poses, contacts and control noise (0: one nominal particle, the paper's pKP)",
             {}},
+           {"goal_confidence",
+            ParameterType::Real,
+            0.5,
+            0.0,
+            1.0,
+            "fraction of a goal-reaching candidate's particles that must end in the goal too",
+            {}},
            goalBias(),
            {"border_fraction",
             ParameterType::Real,
@@ -105,6 +112,7 @@ PlannerRegistry::Entry pKpiece() {
             settings.kpieceSelection = p.real("kpiece_selection");
             settings.uncertainty = p.boolean("uncertainty");
             settings.goalBias = p.real("goal_bias");
+            settings.goalConfidence = p.real("goal_confidence");
             settings.borderFraction = p.real("border_fraction");
             return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, settings));
           }};

@@ -41,6 +41,9 @@ struct JointInfo {
   double upper = 0.0;
   double maxVelocity = 0.0;  ///< URDF velocity limit, rad/s or m/s
   bool limited = true;       ///< false for continuous joints
+  /// No control moves it: locked at its start value (its rate is only solver jitter, which
+  /// the speed check ignores).
+  bool held = false;
 };
 
 /// Reasons why a propagation step produced an invalid state; stored as bit flags in the state.

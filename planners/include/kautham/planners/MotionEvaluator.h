@@ -26,6 +26,7 @@ struct ParticleVerdict {
   double stateValidity = 1.0;  ///< P_state: fraction of particles whose states were all valid
   double interaction = 1.0;    ///< P_int: fraction whose objects moved at most d
   std::vector<std::vector<double>> ends;  ///< each particle's final state
+  double goal = 1.0;  ///< fraction of particles that end valid inside the goal region
   double belief() const { return stateValidity * interaction; }
 };
 

@@ -26,6 +26,9 @@ struct PKpieceSettings {
   double goalBias = 0.05;         ///< probability of expanding one of the motions nearest the goal
   double borderFraction = 0.8;    ///< probability of expanding an exterior cell
   bool uncertainty = true;        ///< false: one nominal particle, nothing sampled ("pKP")
+  /// A candidate ends the search only if at least this fraction of its particles ends valid in
+  /// the goal region (not in the paper: its belief judges validity, not the goal).
+  double goalConfidence = 0.5;
 };
 
 /// p-KPIECE (Muhayyuddin, Moll, Kavraki, Rosell, RA-L 2018; Algorithms 1 and 2): KPIECE whose
@@ -65,6 +68,7 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter {
   bool objectsMoved(const double* start, const double* state) const;
   std::vector<Candidate> sampleCandidates(const Motion& from);
   const Candidate* chooseCandidate(const std::vector<Candidate>& valid);
+  bool reachesGoal(const Candidate& candidate) const;
   static void computeImportance(Grid::Cell* cell, void* planner);
   void recordSolution(const Motion* end, bool exact, double distance);
   std::uint64_t nextStreamSeed();

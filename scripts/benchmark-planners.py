@@ -1,0 +1,160 @@
+#!/usr/bin/env python3
+"""Benchmarks the KPIECE family on the generated clutter scenes and writes docs/benchmarks.md.
+
+For every problem kuka_cans_N (N from --objects) and every planner configuration, runs
+`kautham plan` for each seed with a time limit (60 s by default, as the paper's comparison
+needs), one run at a time, and records whether it solved and how long it took. With
+--validate R, each solved p-KPIECE and o-KPIECE plan of the --validate-problem scene is also
+run R times under the problem's uncertainty (`kautham validate`), and the success rates go in
+a second table. The paper's Table I (i7-4500U, 30 runs per scene) is printed beside ours.
+
+Usage: scripts/benchmark-planners.py [--objects 5 10 20 30 40] [--seeds 1 2 3 4 5]
+           [--time 60] [--threads 1] [--validate 100] [--validate-problem kuka_cans_10]
+           [--keep DIR] [-o docs/benchmarks.md]
+Needs build/apps/kautham (scripts/build.sh) or $KAUTHAM; standard library only.
+"""
+
+import argparse
+import datetime
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+KAUTHAM = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham"))
+
+# name in the table -> planner and its --set overrides
+PLANNERS = [
+    ("p-KPIECE, uncertainty", "p-KPIECE", ["uncertainty=1"]),
+    ("p-KPIECE, none", "p-KPIECE", ["uncertainty=0"]),
+    ("o-KPIECE", "o-KPIECE", []),
+    ("KPIECE", "KPIECE", []),
+]
+
+# The paper's Table I: objects -> (pKP success %, pKP time s, pKPU success %, pKPU time s).
+PAPER = {5: (100, 2.89, 100, 9.88), 10: (100, 5.96, 100, 14.52), 15: (100, 9.15, 90, 29.43),
+         20: (100, 16.78, 86, 47.61), 25: (96, 26.09, 73, 72.28), 30: (90, 41.21, 66, 103.07),
+         35: (73, 49.62, 53, 134.94), 40: (60, 71.64, 40, 182.19)}
+
+
+def run(command):
+    return subprocess.run(command, cwd=ROOT, capture_output=True, text=True)
+
+
+def plan(problem, planner, sets, seed, limit, threads, out):
+    command = [KAUTHAM, "plan", problem, "--planner", planner, "--seed", str(seed), "--time",
+               str(limit), "-o", out]
+    if threads > 1:
+        command += ["--threads", str(threads)]
+    for s in sets:
+        command += ["--set", s]
+    result = run(command)
+    if result.returncode not in (0, 1) or not os.path.exists(out):
+        sys.exit(f"benchmark: {' '.join(command)} failed:\n{result.stderr}")
+    with open(out) as f:
+        data = json.load(f)
+    return data["result"]["solved"], data["timing"]["planning_time"]
+
+
+def validate(problem, planFile, runs, seed):
+    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
+        report = f.name
+    result = run([KAUTHAM, "validate", problem, planFile, "--runs", str(runs), "--seed",
+                  str(seed), "--json", report])
+    if result.returncode != 0:
+        sys.exit(f"benchmark: validate failed:\n{result.stderr}")
+    with open(report) as f:
+        data = json.load(f)
+    os.unlink(report)
+    return data["successes"] / data["runs"]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--objects", type=int, nargs="+", default=[5, 10, 20, 30, 40])
+    parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4, 5])
+    parser.add_argument("--time", type=float, default=60.0)
+    parser.add_argument("--threads", type=int, default=1)
+    parser.add_argument("--validate", type=int, default=0, metavar="RUNS")
+    parser.add_argument("--validate-problem", default="kuka_cans_10")
+    parser.add_argument("--keep", help="folder for the plan files (default: a temporary one)")
+    parser.add_argument("-o", "--output", default=os.path.join(ROOT, "docs", "benchmarks.md"))
+    args = parser.parse_args()
+    keep = args.keep or tempfile.mkdtemp(prefix="kautham-bench-")
+    os.makedirs(keep, exist_ok=True)
+
+    results = {}  # (objects, name) -> list of (solved, time)
+    plans = {}    # (name, seed) -> plan file of the validated scene
+    for n in args.objects:
+        problem = f"problems/kuka_cans_{n}.xml"
+        for name, planner, sets in PLANNERS:
+            for seed in args.seeds:
+                out = os.path.join(keep, f"kuka_cans_{n}_{planner}_{'_'.join(sets)}_s{seed}.json")
+                solved, seconds = plan(problem, planner, sets, seed, args.time, args.threads, out)
+                results.setdefault((n, name), []).append((solved, seconds))
+                if f"kuka_cans_{n}" == args.validate_problem and solved:
+                    plans[(name, seed)] = out
+                print(f"{problem} {name:24} seed {seed}: "
+                      f"{'solved' if solved else 'not solved'} in {seconds:.1f} s", flush=True)
+
+    rates = {}
+    if args.validate:
+        problem = f"problems/{args.validate_problem}.xml"
+        for (name, seed), planFile in sorted(plans.items()):
+            if name in ("p-KPIECE, uncertainty", "o-KPIECE", "p-KPIECE, none", "KPIECE"):
+                rates.setdefault(name, []).append((seed, validate(problem, planFile,
+                                                                  args.validate, seed)))
+                print(f"validate {name:24} seed {seed}: {100 * rates[name][-1][1]:.0f} %",
+                      flush=True)
+    write(args, results, rates)
+
+
+def cell(runs):
+    solved = [t for ok, t in runs if ok]
+    rate = 100.0 * len(solved) / len(runs)
+    median = f"{statistics.median(solved):.1f}" if solved else "-"
+    return f"{rate:.0f} % / {median}"
+
+
+def write(args, results, rates):
+    commit = run(["git", "rev-parse", "--short", "HEAD"]).stdout.strip()
+    lines = [
+        "# Benchmarks: the KPIECE family on kuka_cans_N",
+        "",
+        f"Made by `scripts/benchmark-planners.py` on {datetime.date.today()} (commit {commit}): "
+        f"`kautham plan` on `problems/kuka_cans_N.xml`, seeds {' '.join(map(str, args.seeds))}, "
+        f"time limit {args.time:g} s, {args.threads} thread(s), one run at a time on a machine "
+        "with 2 cores. Each cell: success rate / median planning time of the solved runs (s). "
+        "Rerun it with the same command to check; add `--objects 5 10 15 20 25 30 35 40` or more "
+        "`--seeds` where time allows.",
+        "",
+        "| objects | " + " | ".join(name for name, _, _ in PLANNERS) +
+        " | paper pKP | paper pKPU |",
+        "| --- | " + " | ".join("---" for _ in PLANNERS) + " | --- | --- |",
+    ]
+    for n in args.objects:
+        row = [cell(results[(n, name)]) for name, _, _ in PLANNERS]
+        paper = PAPER.get(n)
+        extra = [f"{paper[0]} % / {paper[1]}", f"{paper[2]} % / {paper[3]}"] if paper else ["", ""]
+        lines.append(f"| {n} | " + " | ".join(row + extra) + " |")
+    lines += ["", "The paper's columns are its Table I (i7-4500U, 30 runs per scene; pKP without "
+              "uncertainty, pKPU with it)."]
+    if rates:
+        lines += ["", f"## Execution under uncertainty ({args.validate_problem})", "",
+                  f"Each solved plan run {args.validate} times by `kautham validate` with the "
+                  "problem's `<Uncertainty>` (sampled object poses, friction, control noise).",
+                  "", "| planner | seed: success rate | mean |", "| --- | --- | --- |"]
+        for name, values in rates.items():
+            per = ", ".join(f"{seed}: {100 * r:.0f} %" for seed, r in values)
+            mean = 100 * sum(r for _, r in values) / len(values)
+            lines.append(f"| {name} | {per} | {mean:.0f} % |")
+    with open(args.output, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print(f"wrote {args.output}")
+
+
+if __name__ == "__main__":
+    main()
