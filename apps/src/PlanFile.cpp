@@ -121,7 +121,14 @@ json treeJson(const planners::SearchTree& tree) {
     points.push_back({round(p.x()), round(p.y()), round(p.z())});
   json distances = json::array();
   for (double d : tree.goalDistance) distances.push_back(round(d));
-  return {{"end_effector", points}, {"parent", tree.parent}, {"goal_distance", distances}};
+  json result = {{"end_effector", points}, {"parent", tree.parent}, {"goal_distance", distances}};
+  // Only a planner that judged every state has one belief per state.
+  if (!tree.belief.empty() && tree.belief.size() == tree.parent.size()) {
+    json beliefs = json::array();
+    for (double b : tree.belief) beliefs.push_back(round(b));
+    result["belief"] = beliefs;
+  }
+  return result;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <ompl/datastructures/PDF.h>
 
 #include "kautham/physics/WorldStateSpace.h"
+#include "kautham/planners/BeliefVertex.h"
 
 namespace kautham::planners {
 
@@ -336,11 +337,11 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
 void PKpiece::getPlannerData(ompl::base::PlannerData& data) const {
   Planner::getPlannerData(data);
   for (const auto& motion : motions_) {
+    const BeliefVertex vertex(motion->state, motion->belief);
     if (motion->parent)
-      data.addEdge(ompl::base::PlannerDataVertex(motion->parent->state),
-                   ompl::base::PlannerDataVertex(motion->state));
+      data.addEdge(BeliefVertex(motion->parent->state, motion->parent->belief), vertex);
     else
-      data.addStartVertex(ompl::base::PlannerDataVertex(motion->state));
+      data.addStartVertex(vertex);
   }
 }
 

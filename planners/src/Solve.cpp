@@ -11,6 +11,7 @@
 #include <ompl/util/RandomNumbers.h>
 
 #include "kautham/planners/BeliefReporter.h"
+#include "kautham/planners/BeliefVertex.h"
 #include "kautham/planners/PlannerRegistry.h"
 
 namespace kautham::planners {
@@ -62,6 +63,8 @@ SearchTree treeOf(const ompl::base::PlannerData& data, const physics::PlanningCo
     const double* state = physics::WorldStateSpace::values(data.getVertex(i).getState());
     tree.endEffector.push_back(context.layout().goalLinkPosition(state));
     tree.goalDistance.push_back(context.goal().distance(state));
+    if (const auto* vertex = dynamic_cast<const BeliefVertex*>(&data.getVertex(i)))
+      tree.belief.push_back(vertex->belief());
     std::vector<unsigned> children;
     data.getEdges(i, children);
     for (unsigned child : children) tree.parent[child] = static_cast<int>(i);

@@ -37,6 +37,7 @@ struct SearchTree {
   std::vector<Eigen::Vector3d> endEffector;  ///< one per tree state
   std::vector<int> parent;                   ///< index of the parent state, -1 for roots
   std::vector<double> goalDistance;          ///< metres from the goal region's centre
+  std::vector<double> belief;  ///< per tree state, when the planner judges robustness (p-KPIECE)
 };
 
 struct PlanOutcome {
