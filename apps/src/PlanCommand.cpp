@@ -25,6 +25,7 @@ struct PlanOptions {
   std::string problem;
   std::optional<std::string> planner;
   std::optional<double> time;
+  std::optional<unsigned> threads;
   std::uint32_t seed = 1;
   std::vector<std::string> sets;
   std::string output;
@@ -43,6 +44,7 @@ std::vector<planners::ParameterOverride> parseOverrides(const PlanOptions& optio
     overrides.emplace_back(text.substr(0, equals), text.substr(equals + 1));
   }
   if (options.time) overrides.emplace_back("time_limit", fmt::format("{}", *options.time));
+  if (options.threads) overrides.emplace_back("threads", fmt::format("{}", *options.threads));
   return overrides;
 }
 
@@ -144,6 +146,9 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   command->add_option("--planner", options->planner, "planner name (see `kautham planners`)");
   command->add_option("--time", options->time, "planning time limit in seconds")
       ->check(CLI::PositiveNumber);
+  command->add_option("--threads", options->threads,
+                      "processes for p-KPIECE's particles, same as --set threads=N (the plan "
+                      "does not depend on it)");
   command->add_option("--seed", options->seed, "random seed (0: pick one)")->capture_default_str();
   command
       ->add_option("--set", options->sets,

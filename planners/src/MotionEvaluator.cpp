@@ -8,42 +8,23 @@
 
 namespace kautham::planners {
 
-namespace {
-double* controlValues(ompl::control::Control* control) {
-  return control->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
-}
-}  // namespace
-
 MotionEvaluator::MotionEvaluator(physics::PlanningContext& context, double maxDisplacement)
     : context_(context),
       sampler_(context.problem(), context.layout()),
       maxDisplacement_(maxDisplacement),
-      from_(context.spaceInformation()->allocState()),
-      to_(context.spaceInformation()->allocState()),
-      control_(context.spaceInformation()->allocControl()),
-      stateSize_(context.layout().stateSize()),
-      controlSize_(context.spaceInformation()->getControlSpace()->getDimension()) {
+      runner_(context),
+      stateSize_(runner_.stateSize()),
+      controlSize_(runner_.controlSize()) {
   const auto& bodies = context.layout().bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b)
     if (bodies[b].role != physics::BodyRole::Robot) objectBodies_.push_back(b);
 }
 
-MotionEvaluator::~MotionEvaluator() {
-  const auto& si = context_.spaceInformation();
-  si->freeState(from_);
-  si->freeState(to_);
-  si->freeControl(control_);
-}
+MotionEvaluator::~MotionEvaluator() = default;
 
-bool MotionEvaluator::step(const double* from, const double* control, double* to,
-                           const Eigen::Vector3d& targetReference) {
-  std::copy(from, from + stateSize_, physics::WorldStateSpace::values(from_));
-  std::copy(control, control + controlSize_, controlValues(control_));
-  const auto& si = context_.spaceInformation();
-  context_.propagator().propagate(from_, control_, si->getPropagationStepSize(), to_);
-  const double* result = physics::WorldStateSpace::values(to_);
-  std::copy(result, result + stateSize_, to);
-  return context_.validityChecker().check(to, targetReference) == physics::Violation::None;
+void MotionEvaluator::useWorkers(unsigned threads) {
+  workers_.reset();
+  if (threads > 1) workers_ = std::make_unique<ParticleWorkers>(runner_, threads - 1);
 }
 
 NominalRun MotionEvaluator::runNominal(const double* start, const double* control, unsigned steps) {
@@ -51,7 +32,8 @@ NominalRun MotionEvaluator::runNominal(const double* start, const double* contro
   run.end.assign(start, start + stateSize_);
   std::vector<double> next(stateSize_);
   for (unsigned i = 0; i < steps; ++i) {
-    if (!step(run.end.data(), control, next.data(), context_.validityChecker().targetStart()))
+    if (!runner_.step(run.end.data(), control, next.data(),
+                      context_.validityChecker().targetStart()))
       break;
     run.end.swap(next);
     run.states.push_back(run.end);
@@ -86,38 +68,58 @@ ParticleVerdict MotionEvaluator::judgeNominal(const double* start, const double*
   return verdict;
 }
 
+std::vector<ParticleJob> MotionEvaluator::particleJobs(const double* start, const double* control,
+                                                       unsigned steps,
+                                                       const ObjectPoseBelief& belief,
+                                                       unsigned particles,
+                                                       std::uint64_t streamSeed) const {
+  std::vector<ParticleJob> jobs(particles);
+  for (unsigned p = 0; p < particles; ++p) {
+    ParticleJob& job = jobs[p];
+    std::mt19937_64 rng(streamSeed + p);
+    job.start.assign(start, start + stateSize_);
+    belief.samplePoses(job.start.data(), rng);
+    job.contact = sampler_.sampleContact(rng);
+    job.control.resize(controlSize_);
+    sampler_.perturbControl(control, job.control.data(), controlSize_, rng);
+    job.steps = steps;
+    job.targetReference = targetPosition(job.start.data());
+  }
+  return jobs;
+}
+
 ParticleVerdict MotionEvaluator::runParticles(const double* start, const double* control,
                                               unsigned steps, const ObjectPoseBelief& belief,
                                               unsigned particles, std::uint64_t streamSeed) {
   ParticleVerdict verdict;
   if (particles == 0) return verdict;
+  const std::vector<ParticleJob> jobs =
+      particleJobs(start, control, steps, belief, particles, streamSeed);
   physics::World& world = context_.world();
   const physics::ContactParameters mean = world.contactParameters();
+  std::vector<ParticleResult> results;
+  try {
+    if (workers_) {
+      results = workers_->run(jobs);
+    } else {
+      results.reserve(jobs.size());
+      for (const ParticleJob& job : jobs) results.push_back(runner_.run(job));
+    }
+  } catch (...) {
+    world.setContactParameters(mean);
+    throw;
+  }
+  world.setContactParameters(mean);
   unsigned validStates = 0;
   unsigned validInteractions = 0;
   unsigned inGoal = 0;
-  std::vector<double> noisy(controlSize_);
-  std::vector<double> sampledStart(start, start + stateSize_);
-  std::vector<double> next(stateSize_);
-  for (unsigned p = 0; p < particles; ++p) {
-    std::mt19937_64 rng(streamSeed + p);
-    std::copy(start, start + stateSize_, sampledStart.begin());
-    belief.samplePoses(sampledStart.data(), rng);
-    world.setContactParameters(sampler_.sampleContact(rng));
-    sampler_.perturbControl(control, noisy.data(), controlSize_, rng);
-    std::vector<double> state = sampledStart;
-    const Eigen::Vector3d targetReference = targetPosition(sampledStart.data());
-    bool valid = true;
-    for (unsigned i = 0; i < steps && valid; ++i) {
-      valid = step(state.data(), noisy.data(), next.data(), targetReference);
-      state.swap(next);
-    }
-    validStates += valid ? 1 : 0;
-    inGoal += valid && context_.goal().reached(state.data()) ? 1 : 0;
-    validInteractions += displacementWithinLimit(sampledStart.data(), state.data()) ? 1 : 0;
-    verdict.ends.push_back(std::move(state));
+  for (std::size_t p = 0; p < jobs.size(); ++p) {
+    validStates += results[p].valid ? 1 : 0;
+    inGoal += results[p].valid && context_.goal().reached(results[p].end.data()) ? 1 : 0;
+    validInteractions +=
+        displacementWithinLimit(jobs[p].start.data(), results[p].end.data()) ? 1 : 0;
+    verdict.ends.push_back(std::move(results[p].end));
   }
-  world.setContactParameters(mean);
   particleCount_ += particles;
   verdict.stateValidity = static_cast<double>(validStates) / particles;
   verdict.interaction = static_cast<double>(validInteractions) / particles;

@@ -38,6 +38,13 @@ std::vector<core::ParameterSpec> commonParameters() {
        100000,
        "most propagation steps a control is held",
        {"Max Control Steps"}},
+      {"threads",
+       ParameterType::Integer,
+       1,
+       1,
+       64,
+       "processes for p-KPIECE's particles (the plan does not depend on it); others ignore it",
+       {"Threads"}},
   };
 }
 

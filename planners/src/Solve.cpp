@@ -12,6 +12,7 @@
 
 #include "kautham/planners/BeliefReporter.h"
 #include "kautham/planners/BeliefVertex.h"
+#include "kautham/planners/ParallelPlanner.h"
 #include "kautham/planners/PlannerRegistry.h"
 
 namespace kautham::planners {
@@ -94,6 +95,8 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
   context.goal().resetBestDistance();
   planner->setProblemDefinition(context.problemDefinition());
   planner->setup();
+  if (auto* parallel = dynamic_cast<ParallelPlanner*>(planner.get()))
+    parallel->setThreads(request.threads());  // other planners run in this thread alone
 
   const physics::PropagationCounters before = context.propagator().counters();
   const Clock::time_point start = Clock::now();

@@ -34,6 +34,12 @@ class PhysicsPropagator : public ompl::control::StatePropagator {
   /// Physics steps that make up `duration` seconds (at least one).
   unsigned stepsFor(double duration) const;
   const PropagationCounters& counters() const { return counters_; }
+  /// Counts work done for this propagator elsewhere: by copies of it in worker processes
+  /// (p-KPIECE's particles, planners::ParticleWorkers), so statistics do not depend on them.
+  void addCounters(const PropagationCounters& work) const {
+    counters_.propagations += work.propagations;
+    counters_.physicsSteps += work.physicsSteps;
+  }
   const ControlMapping& mapping() const { return mapping_; }
 
  private:

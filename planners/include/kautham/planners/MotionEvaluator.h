@@ -1,14 +1,14 @@
 #pragma once
 
+#include <memory>
 #include <random>
 #include <vector>
-
-#include <ompl/base/State.h>
-#include <ompl/control/Control.h>
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/UncertaintySampler.h"
 #include "kautham/planners/ObjectPoseBelief.h"
+#include "kautham/planners/ParticleJob.h"
+#include "kautham/planners/ParticleWorkers.h"
 
 namespace kautham::planners {
 
@@ -34,6 +34,9 @@ struct ParticleVerdict {
 /// motions under sampled uncertainty. Steps one propagation step at a time, so a motion stops
 /// at its first invalid state and at the first state that reaches the goal, and a plan replays
 /// exactly as it was planned (physics::replay steps the same way).
+///
+/// Particle motions are drawn here, in particle order, and run as self-contained jobs: inline,
+/// or spread over worker processes (useWorkers) with bit-identical results.
 class MotionEvaluator {
  public:
   MotionEvaluator(physics::PlanningContext& context, double maxDisplacement);
@@ -44,12 +47,23 @@ class MotionEvaluator {
   /// Propagates `control` from `start` for up to `steps` steps, keeping the valid prefix.
   NominalRun runNominal(const double* start, const double* control, unsigned steps);
 
+  /// Spreads particle jobs over `threads` processes: this one and threads - 1 forked workers
+  /// (ParticleWorkers). 1: every job runs inline. Workers from an earlier call are reaped.
+  void useWorkers(unsigned threads);
+  unsigned threads() const { return workers_ ? static_cast<unsigned>(workers_->size()) + 1 : 1; }
+
   /// Runs `particles` particle motions of the candidate: start poses drawn from `belief`,
   /// contact parameters and control noise from the problem's uncertainty; particle i uses the
   /// random stream `streamSeed + i`, so the verdict does not depend on evaluation order.
   ParticleVerdict runParticles(const double* start, const double* control, unsigned steps,
                                const ObjectPoseBelief& belief, unsigned particles,
                                std::uint64_t streamSeed);
+
+  /// The particle jobs of a candidate: everything random drawn, in particle order, from the
+  /// streams `streamSeed + i`.
+  std::vector<ParticleJob> particleJobs(const double* start, const double* control, unsigned steps,
+                                        const ObjectPoseBelief& belief, unsigned particles,
+                                        std::uint64_t streamSeed) const;
 
   /// The verdict of a nominal run alone: its states are valid (it was kept); the interaction
   /// evaluator judges how far it moved the objects.
@@ -61,9 +75,6 @@ class MotionEvaluator {
   std::uint64_t particleCount() const { return particleCount_; }
 
  private:
-  /// One propagation step from `from` into `to`; returns whether the new state is valid.
-  bool step(const double* from, const double* control, double* to,
-            const Eigen::Vector3d& targetReference);
   Eigen::Vector3d targetPosition(const double* state) const;
   bool displacementWithinLimit(const double* start, const double* end) const;
 
@@ -71,9 +82,8 @@ class MotionEvaluator {
   physics::UncertaintySampler sampler_;
   double maxDisplacement_;
   std::vector<std::size_t> objectBodies_;
-  ompl::base::State* from_;
-  ompl::base::State* to_;
-  ompl::control::Control* control_;
+  ParticleRunner runner_;
+  std::unique_ptr<ParticleWorkers> workers_;  ///< none: jobs run inline
   std::size_t stateSize_;
   std::size_t controlSize_;
   std::uint64_t particleCount_ = 0;

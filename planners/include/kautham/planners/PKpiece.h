@@ -12,6 +12,7 @@
 #include "kautham/planners/BeliefReporter.h"
 #include "kautham/planners/MotionEvaluator.h"
 #include "kautham/planners/ObjectPoseBelief.h"
+#include "kautham/planners/ParallelPlanner.h"
 
 namespace kautham::planners {
 
@@ -37,7 +38,7 @@ struct PKpieceSettings {
 /// choices prefer robust regions. Built on OMPL's GridB, not on KPIECE1 (whose selection code
 /// cannot be overridden). Each motion stores its end state, its control and duration, its
 /// belief and the pose distribution of the objects at its end (ObjectPoseBelief).
-class PKpiece : public ompl::base::Planner, public BeliefReporter {
+class PKpiece : public ompl::base::Planner, public BeliefReporter, public ParallelPlanner {
  public:
   PKpiece(physics::PlanningContext& context, const PKpieceSettings& settings);
   ~PKpiece() override;
@@ -46,6 +47,8 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter {
   void clear() override;
   void getPlannerData(ompl::base::PlannerData& data) const override;
   std::vector<double> solutionBeliefs() const override { return solutionBeliefs_; }
+  /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
+  void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
 
  private:
   struct Motion;

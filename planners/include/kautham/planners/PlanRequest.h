@@ -25,9 +25,11 @@ struct PlanRequest {
 
   physics::PropagationSettings propagation() const;
   double timeLimit() const { return common.real("time_limit"); }
+  /// Cores a planner may use (p-KPIECE's particle processes); others plan in one thread.
+  unsigned threads() const { return static_cast<unsigned>(common.integer("threads")); }
 };
 
-/// Parameters that every planner has: time limit and how controls are propagated.
+/// Parameters that every planner has: time limit, how controls are propagated, threads.
 std::vector<core::ParameterSpec> commonParameters();
 
 /// Builds a request from the problem's <Planner> block, then applies the command line:

@@ -1,0 +1,50 @@
+#include "kautham/planners/ParticleJob.h"
+
+#include <algorithm>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "kautham/physics/WorldStateSpace.h"
+
+namespace kautham::planners {
+
+ParticleRunner::ParticleRunner(physics::PlanningContext& context)
+    : context_(context),
+      from_(context.spaceInformation()->allocState()),
+      to_(context.spaceInformation()->allocState()),
+      control_(context.spaceInformation()->allocControl()),
+      stateSize_(context.layout().stateSize()),
+      controlSize_(context.spaceInformation()->getControlSpace()->getDimension()) {}
+
+ParticleRunner::~ParticleRunner() {
+  const auto& si = context_.spaceInformation();
+  si->freeState(from_);
+  si->freeState(to_);
+  si->freeControl(control_);
+}
+
+bool ParticleRunner::step(const double* from, const double* control, double* to,
+                          const Eigen::Vector3d& targetReference) {
+  std::copy(from, from + stateSize_, physics::WorldStateSpace::values(from_));
+  std::copy(control, control + controlSize_,
+            control_->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+  const auto& si = context_.spaceInformation();
+  context_.propagator().propagate(from_, control_, si->getPropagationStepSize(), to_);
+  const double* result = physics::WorldStateSpace::values(to_);
+  std::copy(result, result + stateSize_, to);
+  return context_.validityChecker().check(to, targetReference) == physics::Violation::None;
+}
+
+ParticleResult ParticleRunner::run(const ParticleJob& job) {
+  context_.world().setContactParameters(job.contact);
+  ParticleResult result;
+  result.end = job.start;
+  std::vector<double> next(stateSize_);
+  for (unsigned i = 0; i < job.steps && result.valid; ++i) {
+    result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference);
+    result.end.swap(next);
+  }
+  return result;
+}
+
+}  // namespace kautham::planners
