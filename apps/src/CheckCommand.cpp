@@ -73,7 +73,9 @@ void printObjects(const core::Problem& problem) {
     byRole[object.role].push_back(object.name);
   for (auto role : {core::ObjectRole::Fixed, core::ObjectRole::Movable, core::ObjectRole::Target})
     fmt::print("{:<12}{}: {}\n", role == core::ObjectRole::Fixed ? "objects" : "",
-               core::toString(role), fmt::join(byRole[role], ", "));
+               core::toString(role),
+               byRole[role].empty() ? std::string("none")
+                                    : fmt::format("{}", fmt::join(byRole[role], ", ")));
   printMeshes(problem);
   std::vector<std::string> uncertain;
   for (const core::ObjectInstance& o : problem.objects)
@@ -87,6 +89,22 @@ void printObjects(const core::Problem& problem) {
                  o.environment->leaves, o.environment->boxes);
   fmt::print("uncertainty {}\n",
              uncertain.empty() ? "none" : fmt::format("{}", fmt::join(uncertain, ", ")));
+  const core::ContactUncertainty& u = problem.uncertainty;
+  fmt::print("            sd of friction {:g}, ERP {:g}, CFM {:g}; control noise sd {:g}\n",
+             u.friction, u.erp, u.cfm, u.control);
+}
+
+void printControls(const core::RobotInstance& robot) {
+  const core::ControlSet& controls = robot.controls;
+  const std::vector<int> movable = robot.model.movableJoints();
+  std::vector<std::string> held;
+  for (std::size_t i = 0; i < movable.size(); ++i)
+    if (!controls.moves(i)) held.push_back(robot.model.joints[movable[i]].name);
+  fmt::print(
+      "controls    {} ({}): {}{}\n", controls.size(),
+      controls.file.empty() ? std::string("one per joint") : controls.file.filename().string(),
+      fmt::join(controls.names, ", "),
+      held.empty() ? std::string() : fmt::format("; held: {}", fmt::join(held, ", ")));
 }
 
 void printSettings(const core::Problem& problem) {
@@ -105,6 +123,11 @@ void printSettings(const core::Problem& problem) {
   const Eigen::AlignedBox3d& w = problem.workspace;
   fmt::print("workspace   x [{:g}, {:g}]  y [{:g}, {:g}]  z [{:g}, {:g}] m\n", w.min().x(),
              w.max().x(), w.min().y(), w.max().y(), w.min().z(), w.max().z());
+  const core::KinodynamicLimits& k = problem.kinodynamics;
+  fmt::print(
+      "robot       joints within their limits (+{:g}), at most {:g}x their speed; links "
+      "slower than {:g} m/s\n",
+      k.jointLimitTolerance, k.jointSpeedFactor, k.maxLinkSpeed);
 }
 
 int runCheck(const CheckOptions& options) {
@@ -113,6 +136,7 @@ int runCheck(const CheckOptions& options) {
   const planners::PlanRequest request = planners::makeRequest(problem, std::nullopt, {}, 1);
   fmt::print("problem     {} ({})\n", problem.name, problem.file.string());
   printRobot(problem.robot);
+  printControls(problem.robot);
   printObjects(problem);
   printSettings(problem);
   fmt::print("planner     {}\n", request.planner);
@@ -120,11 +144,24 @@ int runCheck(const CheckOptions& options) {
     const auto context = makeCheckedContext(problem, q, request);  // throws if the start is bad
     const double* start = context->startState().data();
     const Eigen::Vector3d goal = context->goal().position();
+    const core::GoalRegion& region = problem.queries[q].goal;
+    if (region.isConfiguration()) {
+      fmt::print(
+          "query       {}: start valid; goal: a configuration, within {:g} (normalized joint "
+          "units, {} at ({:.3g}, {:.3g}, {:.3g})), {:.3g} from the start\n",
+          problem.queries[q].name, region.jointTolerance, region.link, goal.x(), goal.y(), goal.z(),
+          context->goal().distance(start));
+      continue;
+    }
+    const std::string approach = region.approach
+                                     ? fmt::format(", +z within {:g} rad of the approach direction",
+                                                   region.approachTolerance)
+                                     : std::string();
     fmt::print(
-        "query       {}: start valid; goal: {} within {:g} m of ({:g}, {:g}, {:g}), "
+        "query       {}: start valid; goal: {} within {:g} m of ({:g}, {:g}, {:g}){}, "
         "{:.1f} cm from the start\n",
-        problem.queries[q].name, problem.queries[q].goal.link, context->goal().getThreshold(),
-        goal.x(), goal.y(), goal.z(), 100.0 * context->goal().distance(start));
+        problem.queries[q].name, region.link, context->goal().getThreshold(), goal.x(), goal.y(),
+        goal.z(), approach, 100.0 * context->goal().distance(start));
   }
   fmt::print("ok\n");
   return kExitSolved;
