@@ -450,23 +450,10 @@ class ProblemReader {
     if (robot != problem_.robot.name && robot != problem_.robot.model.name)
       xml_.fail(e, "<RobotControl name=\"" + robot + "\"> names no robot; the robot is '" +
                        problem_.robot.name + "'");
-    auto numbers = [&](const char* attribute) {
-      std::vector<double> values;
-      std::istringstream text(xml_.requiredText(e, attribute));
-      std::string word;
-      while (text >> word) {
-        char* end = nullptr;
-        const double v = std::strtod(word.c_str(), &end);
-        if (end == word.c_str() || *end != '\0' || !std::isfinite(v))
-          xml_.fail(e, std::string(attribute) + " must hold numbers, got '" + word + "'");
-        values.push_back(v);
-      }
-      return values;
-    };
-    query.init = readControls(e, numbers("init"), "init");
+    query.init = readControls(e, xml_.numbersInAttribute(e, "init"), "init");
     if (xml_.optionalText(e, "goal")) {
       if (hasRegion) xml_.fail(e, "a query has one goal: goal=\"..\" or a <GoalRegion>");
-      query.goal.controls = readControls(e, numbers("goal"), "goal");
+      query.goal.controls = readControls(e, xml_.numbersInAttribute(e, "goal"), "goal");
       query.goal.jointTolerance = positive(e, "tolerance", query.goal.jointTolerance);
     }
   }

@@ -132,6 +132,12 @@ std::string XmlReader::elementText(const tinyxml2::XMLElement& element) const {
   return value.substr(first, value.find_last_not_of(" \t\r\n") - first + 1);
 }
 
+std::vector<double> XmlReader::numbersInAttribute(const tinyxml2::XMLElement& element,
+                                                  const char* attribute) const {
+  return parseNumbers(element, requiredText(element, attribute),
+                      std::string("attribute ") + attribute);
+}
+
 std::vector<double> XmlReader::numbersInText(const tinyxml2::XMLElement& element) const {
   return parseNumbers(element, elementText(element), std::string("<") + element.Name() + ">");
 }

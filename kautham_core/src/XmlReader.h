@@ -46,6 +46,9 @@ class XmlReader {
   /// Three numbers in one attribute, "x y z".
   Eigen::Vector3d vector3(const tinyxml2::XMLElement& element, const char* attribute,
                           const Eigen::Vector3d& fallback) const;
+  /// The whitespace-separated numbers of a required attribute, e.g. init="0.5 0.5".
+  std::vector<double> numbersInAttribute(const tinyxml2::XMLElement& element,
+                                         const char* attribute) const;
   /// The whitespace-separated numbers of an element's text, e.g. <Init>0.5 0.5</Init>.
   std::vector<double> numbersInText(const tinyxml2::XMLElement& element) const;
   std::string elementText(const tinyxml2::XMLElement& element) const;

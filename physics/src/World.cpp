@@ -34,10 +34,7 @@ void World::readState(double* state) const {
     std::copy(v, v + 3, s + WorldLayout::kLinearVelocity);
     std::copy(w, w + 3, s + WorldLayout::kAngularVelocity);
   }
-  const std::vector<double> positions = jointPositions();
-  const std::vector<double> rates = jointVelocities();
-  std::copy(positions.begin(), positions.end(), state + layout_.jointPositionIndex());
-  std::copy(rates.begin(), rates.end(), state + layout_.jointVelocityIndex());
+  readJoints(state + layout_.jointPositionIndex(), state + layout_.jointVelocityIndex());
   state[layout_.flagsIndex()] = 0.0;
 }
 
@@ -75,19 +72,26 @@ void World::setJointVelocities(const double* velocities) {
   }
 }
 
+void World::readJoints(double* positions, double* rates) const {
+  for (std::size_t i = 0; i < actuators_.size(); ++i) {
+    const Actuator& a = actuators_[i];
+    const bool prismatic = a.type == core::JointType::Prismatic;
+    positions[i] = prismatic ? dJointGetSliderPosition(a.joint) : dJointGetHingeAngle(a.joint);
+    rates[i] = prismatic ? dJointGetSliderPositionRate(a.joint) : dJointGetHingeAngleRate(a.joint);
+  }
+}
+
 std::vector<double> World::jointPositions() const {
-  std::vector<double> positions;
-  for (const Actuator& a : actuators_)
-    positions.push_back(a.type == core::JointType::Prismatic ? dJointGetSliderPosition(a.joint)
-                                                             : dJointGetHingeAngle(a.joint));
+  std::vector<double> positions(actuators_.size());
+  std::vector<double> rates(actuators_.size());
+  readJoints(positions.data(), rates.data());
   return positions;
 }
 
 std::vector<double> World::jointVelocities() const {
-  std::vector<double> rates;
-  for (const Actuator& a : actuators_)
-    rates.push_back(a.type == core::JointType::Prismatic ? dJointGetSliderPositionRate(a.joint)
-                                                         : dJointGetHingeAngleRate(a.joint));
+  std::vector<double> positions(actuators_.size());
+  std::vector<double> rates(actuators_.size());
+  readJoints(positions.data(), rates.data());
   return rates;
 }
 

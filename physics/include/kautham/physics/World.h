@@ -87,6 +87,9 @@ class World {
   bool diverged() const;
   void destroy();
   void restoreGeomOrder();
+  /// Writes each actuated joint's position and rate (the state's joint part; no allocation:
+  /// it runs on every propagation).
+  void readJoints(double* positions, double* rates) const;
   void recordOverlap(const GeomTag& a, const GeomTag& b, int contacts);
   /// Moves the first `count` contacts of the buffer that are usable to its front; their number.
   int usableContacts(int count);
