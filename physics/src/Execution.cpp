@@ -48,25 +48,6 @@ bool startIsPossible(PlanningContext& context, const WorldValidityChecker& check
   return !overlaps && valid;
 }
 
-/// The goal of the query with a region given relative to an object moved as that object's
-/// sampled start pose is moved from its nominal one (none when nothing moves it).
-std::optional<GoalSpec> movedGoal(const PlanningContext& context, const double* start) {
-  const core::GoalRegion& goal = context.query().goal;
-  if (goal.isConfiguration() || goal.relativeTo.empty()) return std::nullopt;
-  const std::optional<int> object = context.problem().findObject(goal.relativeTo);
-  const WorldLayout& layout = context.layout();
-  for (std::size_t b = 0; object && b < layout.bodies.size(); ++b) {
-    if (layout.bodies[b].objectIndex != *object) continue;
-    const Eigen::Isometry3d move =
-        layout.linkPose(start, b) * layout.linkPose(context.startState().data(), b).inverse();
-    GoalSpec spec = context.goal().spec();
-    spec.position = move * spec.position;
-    if (spec.approach) spec.approach = (move.linear() * *spec.approach).normalized();
-    return spec;
-  }
-  return std::nullopt;
-}
-
 }  // namespace
 
 ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>& controls,
@@ -95,10 +76,8 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       ++result.rejectedStarts;
     }
     checker = sampledChecker.get();
-    if (const std::optional<GoalSpec> spec = movedGoal(context, result.startState.data())) {
-      sampledGoal = std::make_unique<WorkspaceGoal>(si, borrowedLayout(context), *spec);
-      goal = sampledGoal.get();
-    }
+    sampledGoal = context.goalForStart(result.startState.data());
+    if (sampledGoal) goal = sampledGoal.get();
     result.contact = sampler->sampleContact(rng);
     context.world().setContactParameters(result.contact);
   }

@@ -103,4 +103,22 @@ void PlanningContext::usePlanningRules(ValidityRules rules) {
   si_->setup();
 }
 
+std::unique_ptr<WorkspaceGoal> PlanningContext::goalForStart(const double* start) const {
+  const core::GoalRegion& region = query().goal;
+  if (region.isConfiguration() || region.relativeTo.empty()) return nullptr;
+  const std::optional<int> object = problem_.findObject(region.relativeTo);
+  const WorldLayout& layout = *layout_;
+  for (std::size_t b = 0; object && b < layout.bodies.size(); ++b) {
+    if (layout.bodies[b].objectIndex != *object) continue;
+    const Eigen::Isometry3d move =
+        layout.linkPose(start, b) * layout.linkPose(start_.data(), b).inverse();
+    if (move.isApprox(Eigen::Isometry3d::Identity(), 1e-12)) return nullptr;
+    GoalSpec spec = goal_->spec();
+    spec.position = move * spec.position;
+    if (spec.approach) spec.approach = (move.linear() * *spec.approach).normalized();
+    return std::make_unique<WorkspaceGoal>(si_, layout_, spec);
+  }
+  return nullptr;
+}
+
 }  // namespace kautham::physics

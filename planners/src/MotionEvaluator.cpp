@@ -27,7 +27,8 @@ void MotionEvaluator::useWorkers(unsigned threads) {
   if (threads > 1) workers_ = std::make_unique<ParticleWorkers>(runner_, threads - 1);
 }
 
-NominalRun MotionEvaluator::runNominal(const double* start, const double* control, unsigned steps) {
+NominalRun MotionEvaluator::runNominal(const double* start, const double* control, unsigned steps,
+                                       bool throughGoal) {
   NominalRun run;
   run.end.assign(start, start + stateSize_);
   std::vector<double> next(stateSize_);
@@ -35,12 +36,15 @@ NominalRun MotionEvaluator::runNominal(const double* start, const double* contro
     if (!runner_.step(run.end.data(), control, next.data(),
                       context_.validityChecker().targetStart()))
       break;
+    const bool inGoal = context_.goal().reached(next.data());
+    if (run.reachedGoal && !inGoal) break;  // left the goal: end at its last state inside
     run.end.swap(next);
     run.states.push_back(run.end);
     run.steps = i + 1;
-    if (context_.goal().reached(run.end.data())) {
+    if (inGoal && !run.reachedGoal) {
       run.reachedGoal = true;
-      break;
+      run.goalFrom = run.steps;
+      if (!throughGoal) break;
     }
   }
   return run;
@@ -68,59 +72,88 @@ ParticleVerdict MotionEvaluator::judgeNominal(const double* start, const double*
   return verdict;
 }
 
-std::vector<ParticleJob> MotionEvaluator::particleJobs(const double* start, const double* control,
-                                                       unsigned steps,
-                                                       const ObjectPoseBelief& belief,
-                                                       unsigned particles,
-                                                       std::uint64_t streamSeed) const {
-  std::vector<ParticleJob> jobs(particles);
-  for (unsigned p = 0; p < particles; ++p) {
+std::vector<ParticleJob> MotionEvaluator::particleJobs(const ParticleRequest& request) const {
+  std::vector<ParticleJob> jobs(request.particles);
+  for (unsigned p = 0; p < request.particles; ++p) {
     ParticleJob& job = jobs[p];
-    std::mt19937_64 rng(streamSeed + p);
-    job.start.assign(start, start + stateSize_);
-    belief.samplePoses(job.start.data(), rng);
+    std::mt19937_64 rng(request.streamSeed + p);
+    job.start.assign(request.start, request.start + stateSize_);
+    if (request.robots) request.robots->apply(p, job.start.data());
+    request.poses->samplePoses(job.start.data(), rng);
     job.contact = sampler_.sampleContact(rng);
     job.control.resize(controlSize_);
-    sampler_.perturbControl(control, job.control.data(), controlSize_, rng);
-    job.steps = steps;
+    sampler_.perturbControl(request.control, job.control.data(), controlSize_, rng);
+    job.steps = request.steps;
     job.targetReference = targetPosition(job.start.data());
+    job.recordAfter = request.recordAfter;
   }
   return jobs;
 }
 
-ParticleVerdict MotionEvaluator::runParticles(const double* start, const double* control,
-                                              unsigned steps, const ObjectPoseBelief& belief,
-                                              unsigned particles, std::uint64_t streamSeed) {
+std::vector<ParticleResult> MotionEvaluator::runJobs(const std::vector<ParticleJob>& jobs) {
+  if (workers_) return workers_->run(jobs);
+  std::vector<ParticleResult> results;
+  results.reserve(jobs.size());
+  for (const ParticleJob& job : jobs) results.push_back(runner_.run(job));
+  return results;
+}
+
+ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, double toBeat) {
   ParticleVerdict verdict;
+  const unsigned particles = request.particles;
+  verdict.particles = particles;
   if (particles == 0) return verdict;
-  const std::vector<ParticleJob> jobs =
-      particleJobs(start, control, steps, belief, particles, streamSeed);
+  const std::vector<ParticleJob> jobs = particleJobs(request);
   physics::World& world = context_.world();
   const physics::ContactParameters mean = world.contactParameters();
-  std::vector<ParticleResult> results;
+  unsigned validStates = 0;
+  unsigned validInteractions = 0;
+  unsigned inGoal = 0;
+  std::size_t ran = 0;
   try {
-    if (workers_) {
-      results = workers_->run(jobs);
-    } else {
-      results.reserve(jobs.size());
-      for (const ParticleJob& job : jobs) results.push_back(runner_.run(job));
+    while (ran < jobs.size()) {
+      const std::size_t end = std::min(jobs.size(), ran + kParticleBatch);
+      std::vector<ParticleResult> results =
+          runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
+      for (std::size_t p = ran; p < end; ++p) {
+        ParticleResult& result = results[p - ran];
+        const double* particleStart = jobs[p].start.data();
+        // The pre-grasp pose follows the target: a particle whose target was sampled elsewhere
+        // must reach the goal around it, as an execution in `kautham validate` must.
+        const std::unique_ptr<physics::WorkspaceGoal> moved = context_.goalForStart(particleStart);
+        const physics::WorkspaceGoal& goal = moved ? *moved : context_.goal();
+        const bool interactionOk = displacementWithinLimit(particleStart, result.end.data());
+        validStates += result.valid ? 1 : 0;
+        inGoal += result.valid && goal.reached(result.end.data()) ? 1 : 0;
+        validInteractions += interactionOk ? 1 : 0;
+        std::vector<char> recordedInGoal;
+        std::vector<char> recordedInteractionOk;
+        for (const std::vector<double>& state : result.recorded) {
+          recordedInGoal.push_back(goal.reached(state.data()));
+          recordedInteractionOk.push_back(displacementWithinLimit(particleStart, state.data()));
+        }
+        verdict.ends.push_back(std::move(result.end));
+        verdict.endInteractionOk.push_back(interactionOk);
+        verdict.recorded.push_back(std::move(result.recorded));
+        verdict.recordedInGoal.push_back(std::move(recordedInGoal));
+        verdict.recordedInteractionOk.push_back(std::move(recordedInteractionOk));
+      }
+      ran = end;
+      // Every remaining particle valid is the best case.
+      const double remaining = static_cast<double>(jobs.size() - ran);
+      const double bound =
+          (validStates + remaining) * (validInteractions + remaining) / (particles * particles);
+      if (ran < jobs.size() && bound <= toBeat) {
+        verdict.pruned = true;
+        break;
+      }
     }
   } catch (...) {
     world.setContactParameters(mean);
     throw;
   }
   world.setContactParameters(mean);
-  unsigned validStates = 0;
-  unsigned validInteractions = 0;
-  unsigned inGoal = 0;
-  for (std::size_t p = 0; p < jobs.size(); ++p) {
-    validStates += results[p].valid ? 1 : 0;
-    inGoal += results[p].valid && context_.goal().reached(results[p].end.data()) ? 1 : 0;
-    validInteractions +=
-        displacementWithinLimit(jobs[p].start.data(), results[p].end.data()) ? 1 : 0;
-    verdict.ends.push_back(std::move(results[p].end));
-  }
-  particleCount_ += particles;
+  particleCount_ += ran;
   verdict.stateValidity = static_cast<double>(validStates) / particles;
   verdict.interaction = static_cast<double>(validInteractions) / particles;
   verdict.goal = static_cast<double>(inGoal) / particles;

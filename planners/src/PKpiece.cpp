@@ -26,8 +26,11 @@ struct PKpiece::Motion {
   std::vector<double> control;
   unsigned steps = 0;
   Motion* parent = nullptr;
-  double belief = 1.0;
+  double belief = 1.0;      ///< b of the candidate it came from
+  double pathBelief = 1.0;  ///< product of the candidates' beliefs from the root to here
   std::shared_ptr<const ObjectPoseBelief> poses;
+  std::shared_ptr<const RobotSpread> robots;  ///< null: the particles start as the state
+  unsigned expansion = 0;  ///< the iteration that added it: its pieces share the number
   double goalDistance = 0.0;
   CellData* cell = nullptr;
   bool reachesGoal = false;  ///< in the goal, and enough of its particles were too
@@ -47,6 +50,13 @@ struct PKpiece::CellData {
 struct PKpiece::Candidate {
   std::vector<double> control;
   NominalRun run;
+  std::vector<unsigned> pieceEnds;  ///< steps after which the motion is cut (see expand)
+  /// Steps after which its particles' states are kept: the piece ends, and every step the
+  /// nominal run spent in the goal.
+  std::vector<unsigned> recordAfter;
+  std::uint64_t streamSeed = 0;  ///< its particles' random streams
+  double fromPathBelief = 1.0;   ///< the path belief of the motion it grows from
+  bool judged = false;           ///< verdict holds its particles' (possibly pruned) say
   ParticleVerdict verdict;
 };
 
@@ -62,7 +72,8 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       fitRng_(rng_.uniformInt(0, std::numeric_limits<int>::max())),
       streamBase_(static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()))
                   << 20),
-      grid_(context.projection().getDimension()) {
+      grid_(context.projection().getDimension()),
+      robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())) {
   specs_.approximateSolutions = true;
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
@@ -76,6 +87,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
     double sum = 0.0;
     for (double b : solutionBeliefs_) sum += b;
     return std::to_string(sum / solutionBeliefs_.size());
+  });
+  addPlannerProgressProperty("solution_path_belief REAL", [this] {
+    return solutionBeliefs_.empty() ? std::string("nan") : std::to_string(solutionPathBelief_);
   });
 }
 
@@ -91,6 +105,7 @@ void PKpiece::clear() {
   grid_.clear();
   cells_.clear();
   nearest_.clear();
+  goalStarts_.clear();
   iteration_ = 1;
   beliefMeanSum_ = 0.0;
   candidateCount_ = 0;
@@ -129,20 +144,32 @@ void PKpiece::addMotion(Motion* motion) {
   CellData& data = *cell->data;
   beliefMeanSum_ -= data.meanBelief();
   data.motions.push_back(motion);
-  data.beliefSum += motion->belief;
+  data.beliefSum += selectionBelief(*motion);
   beliefMeanSum_ += data.meanBelief();
   motion->cell = &data;
 
-  nearest_.push_back(motion);
-  std::sort(nearest_.begin(), nearest_.end(),
+  keepIfNear(nearest_, motion);
+  // Only a motion whose path is believed at least as much as a solution must be can end
+  // one: the goal bias expands from those.
+  if (!settings_.pathBelief || motion->pathBelief >= settings_.goalConfidence)
+    keepIfNear(goalStarts_, motion);
+}
+
+void PKpiece::keepIfNear(std::vector<Motion*>& nearest, Motion* motion) {
+  nearest.push_back(motion);
+  std::sort(nearest.begin(), nearest.end(),
             [](const Motion* a, const Motion* b) { return a->goalDistance < b->goalDistance; });
-  if (nearest_.size() > kNearestKept) nearest_.pop_back();
+  if (nearest.size() > kNearestKept) nearest.pop_back();
 }
 
 PKpiece::Motion* PKpiece::nearGoalMotion() {
   ompl::PDF<Motion*> pdf;
-  for (Motion* m : nearest_) pdf.add(m, 1.0 / (m->goalDistance + 0.01));
+  for (Motion* m : goalStarts_) pdf.add(m, 1.0 / (m->goalDistance + 0.01));
   return pdf.sample(rng_.uniform01());
+}
+
+double PKpiece::selectionBelief(const Motion& motion) const {
+  return settings_.pathBelief ? motion.pathBelief : motion.belief;
 }
 
 PKpiece::Motion* PKpiece::selectInCell(const CellData& cell) {
@@ -155,10 +182,11 @@ PKpiece::Motion* PKpiece::selectInCell(const CellData& cell) {
   double best = -1.0;
   std::vector<Motion*> ties;
   for (Motion* m : motions) {
-    if (m->belief > best + 1e-12) {
-      best = m->belief;
+    const double belief = selectionBelief(*m);
+    if (belief > best + 1e-12) {
+      best = belief;
       ties.assign(1, m);
-    } else if (std::abs(m->belief - best) <= 1e-12) {
+    } else if (std::abs(belief - best) <= 1e-12) {
       ties.push_back(m);
     }
   }
@@ -166,7 +194,7 @@ PKpiece::Motion* PKpiece::selectInCell(const CellData& cell) {
 }
 
 PKpiece::Motion* PKpiece::selectMotion() {
-  if (!nearest_.empty() && rng_.uniform01() < settings_.goalBias) return nearGoalMotion();
+  if (!goalStarts_.empty() && rng_.uniform01() < settings_.goalBias) return nearGoalMotion();
   const bool exterior = grid_.countExternal() > 0 &&
                         (grid_.countInternal() == 0 || rng_.uniform01() < settings_.borderFraction);
   Grid::Cell* cell = exterior ? grid_.topExternal() : grid_.topInternal();
@@ -180,7 +208,6 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
   const unsigned maxSteps = si->getMaxControlDuration();
   const std::size_t dimension = si->getControlSpace()->getDimension();
   const double* start = physics::WorldStateSpace::values(from.state);
-  const unsigned particles = settings_.uncertainty ? settings_.particles : 0;
   std::vector<Candidate> valid;
   for (unsigned c = 0; c < settings_.candidates; ++c) {
     Candidate candidate;
@@ -188,60 +215,153 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
     for (double& u : candidate.control) u = rng_.uniformReal(-1.0, 1.0);
     const unsigned steps = static_cast<unsigned>(
         rng_.uniformInt(static_cast<int>(minSteps), static_cast<int>(maxSteps)));
-    candidate.run = evaluator_.runNominal(start, candidate.control.data(), steps);
+    candidate.run = evaluator_.runNominal(start, candidate.control.data(), steps, withParticles());
     ++candidateCount_;
     if (candidate.run.steps == 0) continue;  // invalid from its first step
-    // Without uncertainty the nominal run is the only particle (the paper's pKP column).
-    candidate.verdict = particles == 0 ? evaluator_.judgeNominal(start, candidate.run.end.data())
-                                       : evaluator_.runParticles(start, candidate.control.data(),
-                                                                 candidate.run.steps, *from.poses,
-                                                                 particles, nextStreamSeed());
+    candidate.streamSeed = nextStreamSeed();
+    candidate.fromPathBelief = from.pathBelief;
+    candidate.pieceEnds = pieceEnds(candidate.run);
+    candidate.recordAfter = candidate.pieceEnds;
+    for (unsigned s = candidate.run.goalFrom; s > 0 && s <= candidate.run.steps; ++s)
+      candidate.recordAfter.push_back(s);
+    std::sort(candidate.recordAfter.begin(), candidate.recordAfter.end());
+    candidate.recordAfter.erase(
+        std::unique(candidate.recordAfter.begin(), candidate.recordAfter.end()),
+        candidate.recordAfter.end());
     valid.push_back(std::move(candidate));
   }
   return valid;
 }
 
-bool PKpiece::reachesGoal(const Candidate& c) const {
-  return c.run.reachedGoal && c.verdict.goal >= settings_.goalConfidence;
+void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
+  const double* start = physics::WorldStateSpace::values(from.state);
+  candidate.judged = true;
+  if (!withParticles()) {
+    // Without uncertainty the nominal run is the only particle (the paper's pKP column).
+    candidate.verdict = evaluator_.judgeNominal(start, candidate.run.end.data());
+    return;
+  }
+  ParticleRequest request;
+  request.start = start;
+  request.control = candidate.control.data();
+  request.steps = candidate.run.steps;
+  request.poses = from.poses.get();
+  request.robots = from.robots.get();
+  request.recordAfter = candidate.recordAfter;
+  request.particles = settings_.particles;
+  request.streamSeed = candidate.streamSeed;
+  candidate.verdict = evaluator_.runParticles(request, toBeat);
+  if (candidate.run.reachedGoal && !candidate.verdict.pruned) settleInGoal(candidate);
 }
 
-const PKpiece::Candidate* PKpiece::chooseCandidate(const std::vector<Candidate>& valid) {
+bool PKpiece::withParticles() const { return settings_.uncertainty && settings_.particles > 0; }
+
+std::size_t PKpiece::recordIndex(const Candidate& candidate, unsigned step) {
+  const auto& steps = candidate.recordAfter;
+  return static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), step) -
+                                  steps.begin());
+}
+
+void PKpiece::settleInGoal(Candidate& candidate) const {
+  // The nominal run went on while it stayed in the goal; it ends at the step where most
+  // particles are inside too (the earliest of equals), rather than where it entered: the
+  // region's border, which a particle misses as often as it hits.
+  NominalRun& run = candidate.run;
+  unsigned bestStep = run.goalFrom;
+  unsigned bestCount = 0;
+  for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
+    const unsigned count = candidate.verdict.inGoalAt(recordIndex(candidate, step));
+    if (count > bestCount) {
+      bestCount = count;
+      bestStep = step;
+    }
+  }
+  candidate.verdict = candidate.verdict.cutAt(recordIndex(candidate, bestStep));
+  run.states.resize(bestStep);
+  run.end = run.states.back();
+  run.steps = bestStep;
+  candidate.pieceEnds = pieceEnds(run);
+}
+
+double PKpiece::solutionConfidence(const Candidate& c) const {
+  // How likely the plan ending with this candidate is to succeed: the path to it is valid,
+  // and then its particles end valid in the goal.
+  return (settings_.pathBelief ? c.fromPathBelief : 1.0) * c.verdict.goal;
+}
+
+bool PKpiece::reachesGoal(const Candidate& c) const {
+  return c.run.reachedGoal && c.judged && !c.verdict.pruned &&
+         solutionConfidence(c) >= settings_.goalConfidence;
+}
+
+PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, const Motion& from) {
   if (valid.empty()) return nullptr;
   // A candidate that reaches the goal ends the search: the most robust of those is kept.
-  const Candidate* best = nullptr;
-  for (const Candidate& c : valid)
+  Candidate* best = nullptr;
+  for (Candidate& c : valid) {
+    if (!c.run.reachedGoal) continue;
+    judge(c, from, -1.0);
     if (reachesGoal(c) && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+  }
   if (best) return best;
-  if (rng_.uniform01() < settings_.randomCandidate)
-    return &valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
-  for (const Candidate& c : valid)
-    if (!best || c.verdict.belief() > best->verdict.belief()) best = &c;
+  if (rng_.uniform01() < settings_.randomCandidate) {
+    Candidate& c =
+        valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
+    if (!c.judged) judge(c, from, -1.0);
+    return &c;
+  }
+  // The first candidate of highest belief, as if all were judged in full: a candidate stops
+  // as soon as it cannot beat the best so far, and none is judged once one is certain.
+  const bool prune = settings_.pruneCandidates;
+  for (Candidate& c : valid) {
+    if (prune && best && best->verdict.belief() >= 1.0) break;
+    if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
+    if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+  }
   return best;
 }
 
 PKpiece::Motion* PKpiece::expand(Motion* from) {
-  const std::vector<Candidate> valid = sampleCandidates(*from);
-  const Candidate* chosen = chooseCandidate(valid);
+  std::vector<Candidate> valid = sampleCandidates(*from);
+  const Candidate* chosen = chooseCandidate(valid, *from);
   if (!chosen) return nullptr;
   const double* start = physics::WorldStateSpace::values(from->state);
   const auto endPoses = from->poses->afterMotion(
       evaluator_.objectBodies(), start, chosen->run.end.data(), chosen->verdict.ends, fitRng_);
-  // As KPIECE does, the kept motion is cut where its end effector changes cell: each piece is
-  // a motion of the tree, so one expansion can cover several cells.
   // Pieces before the end carry the parent's pose distribution while no object has moved yet,
   // and the end's once one has (the particles tell only how the motion ends).
   const std::vector<std::vector<double>>& states = chosen->run.states;
   Motion* parent = from;
   unsigned pieceStart = 0;
-  for (unsigned i = 0; i < states.size(); ++i) {
-    const bool last = i + 1 == states.size();
-    if (!last && cellOf(states[i]) == cellOf(states[i + 1])) continue;
-    const bool untouched = !last && !objectsMoved(start, states[i].data());
-    parent = addPiece(parent, *chosen, states[i], i + 1 - pieceStart,
-                      untouched ? from->poses : endPoses);
-    pieceStart = i + 1;
+  for (std::size_t k = 0; k < chosen->pieceEnds.size(); ++k) {
+    const unsigned end = chosen->pieceEnds[k];
+    const bool last = end == states.size();
+    const bool untouched = !last && !objectsMoved(start, states[end - 1].data());
+    parent = addPiece(parent, *chosen, states[end - 1], end - pieceStart, from->pathBelief,
+                      untouched ? from->poses : endPoses, robotSpreadAt(*chosen, end));
+    pieceStart = end;
   }
   return parent;
+}
+
+std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {
+  // As KPIECE does, a kept motion is cut where its end effector changes cell: each piece is
+  // a motion of the tree, so one expansion can cover several cells.
+  std::vector<unsigned> ends;
+  for (std::size_t i = 0; i < run.states.size(); ++i)
+    if (i + 1 == run.states.size() || cellOf(run.states[i]) != cellOf(run.states[i + 1]))
+      ends.push_back(static_cast<unsigned>(i + 1));
+  return ends;
+}
+
+std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(const Candidate& chosen,
+                                                          unsigned step) const {
+  if (!settings_.robotSpread) return nullptr;
+  const std::size_t record = recordIndex(chosen, step);
+  std::vector<const std::vector<double>*> states;
+  for (const auto& particle : chosen.verdict.recorded)
+    if (particle.size() > record) states.push_back(&particle[record]);
+  return RobotSpread::fromStates(robotPart_, states);
 }
 
 PKpiece::Grid::Coord PKpiece::cellOf(const std::vector<double>& state) const {
@@ -262,7 +382,9 @@ bool PKpiece::objectsMoved(const double* start, const double* state) const {
 
 PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
                                    const std::vector<double>& end, unsigned steps,
-                                   std::shared_ptr<const ObjectPoseBelief> poses) {
+                                   double fromPathBelief,
+                                   std::shared_ptr<const ObjectPoseBelief> poses,
+                                   std::shared_ptr<const RobotSpread> robots) {
   auto motion = std::make_unique<Motion>();
   motion->state = si_->allocState();
   double* values = physics::WorldStateSpace::values(motion->state);
@@ -271,8 +393,12 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->steps = steps;
   motion->parent = parent;
   motion->belief = chosen.verdict.belief();
+  // Every piece of one candidate shares its belief: multiply it in once.
+  motion->pathBelief = fromPathBelief * motion->belief;
   motion->goalDistance = context_.goal().distance(values);
   motion->poses = std::move(poses);
+  motion->robots = std::move(robots);
+  motion->expansion = iteration_;
   motion->reachesGoal = reachesGoal(chosen) && &end == &chosen.run.states.back();
   Motion* raw = motion.get();
   motions_.push_back(std::move(motion));
@@ -288,12 +414,18 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
   auto* csi = static_cast<ompl::control::SpaceInformation*>(si_.get());
   const double stepSize = csi->getPropagationStepSize();
   solutionBeliefs_.clear();
+  solutionPathBelief_ = end->pathBelief;
   path->append(chain.front()->state);
   for (std::size_t i = 1; i < chain.size(); ++i) {
+    // The pieces of one expansion are one control held for their summed duration, as its
+    // particles ran it (and as an execution with control noise must draw it: once).
+    unsigned steps = chain[i]->steps;
+    while (i + 1 < chain.size() && chain[i + 1]->expansion == chain[i]->expansion)
+      steps += chain[++i]->steps;
     ompl::control::Control* control = csi->allocControl();
     std::copy(chain[i]->control.begin(), chain[i]->control.end(),
               control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
-    path->append(chain[i]->state, control, chain[i]->steps * stepSize);
+    path->append(chain[i]->state, control, steps * stepSize);
     csi->freeControl(control);
     solutionBeliefs_.push_back(chain[i]->belief);
   }
@@ -337,9 +469,9 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
 void PKpiece::getPlannerData(ompl::base::PlannerData& data) const {
   Planner::getPlannerData(data);
   for (const auto& motion : motions_) {
-    const BeliefVertex vertex(motion->state, motion->belief);
+    const BeliefVertex vertex(motion->state, selectionBelief(*motion));
     if (motion->parent)
-      data.addEdge(BeliefVertex(motion->parent->state, motion->parent->belief), vertex);
+      data.addEdge(BeliefVertex(motion->parent->state, selectionBelief(*motion->parent)), vertex);
     else
       data.addStartVertex(vertex);
   }

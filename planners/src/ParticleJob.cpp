@@ -40,9 +40,14 @@ ParticleResult ParticleRunner::run(const ParticleJob& job) {
   ParticleResult result;
   result.end = job.start;
   std::vector<double> next(stateSize_);
+  auto record = job.recordAfter.begin();
   for (unsigned i = 0; i < job.steps && result.valid; ++i) {
     result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference);
     result.end.swap(next);
+    if (result.valid && record != job.recordAfter.end() && *record == i + 1) {
+      result.recorded.push_back(result.end);
+      ++record;
+    }
   }
   return result;
 }

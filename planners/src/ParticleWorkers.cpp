@@ -23,10 +23,12 @@ namespace {
 // runs a job of its own before handing out the next.
 constexpr unsigned kJobsPerWorker = 2;
 
-// Messages: a job is [index, steps] (uint64), contact (3 doubles), target reference (3), start
-// state, control; a result is [index, valid, propagations, physics steps] (uint64), end state.
-constexpr std::size_t kJobHeader = 2 * sizeof(std::uint64_t) + 6 * sizeof(double);
-constexpr std::size_t kResultHeader = 4 * sizeof(std::uint64_t);
+// Messages: a job is [index, steps, n] (uint64), contact (3 doubles), target reference (3),
+// start state, control, then its n record steps (uint64); a result is [index, valid,
+// propagations, physics steps, n] (uint64), end state, then its n recorded states.
+// Each is read as its fixed part, then the n items that part announces.
+constexpr std::size_t kJobHeader = 3 * sizeof(std::uint64_t) + 6 * sizeof(double);
+constexpr std::size_t kResultHeader = 5 * sizeof(std::uint64_t);
 
 std::size_t jobSize(const ParticleRunner& runner) {
   return kJobHeader + (runner.stateSize() + runner.controlSize()) * sizeof(double);
@@ -35,6 +37,9 @@ std::size_t jobSize(const ParticleRunner& runner) {
 std::size_t resultSize(const ParticleRunner& runner) {
   return kResultHeader + runner.stateSize() * sizeof(double);
 }
+
+// Items announced by a message: more than a motion has steps is a corrupt message.
+constexpr std::uint64_t kMaxRecords = 1u << 16;
 
 /// Appends raw bytes; reads them back in order.
 class Packer {
@@ -183,12 +188,23 @@ void ParticleWorkers::serve(int fd) {
       Unpacker unpack(buffer_);
       const std::uint64_t index = unpack.u64();
       job.steps = static_cast<unsigned>(unpack.u64());
+      const std::uint64_t records = unpack.u64();
       job.contact.friction = unpack.real();
       job.contact.erp = unpack.real();
       job.contact.cfm = unpack.real();
       for (int k = 0; k < 3; ++k) job.targetReference[k] = unpack.real();
       unpack.get(job.start.data(), stateSize * sizeof(double));
       unpack.get(job.control.data(), controlSize * sizeof(double));
+      if (records > kMaxRecords) {
+        code = 1;
+        break;
+      }
+      std::vector<std::uint64_t> steps(records);
+      if (readAll(fd, steps.data(), records * sizeof(std::uint64_t)) != Io::Ok) {
+        code = 1;
+        break;
+      }
+      job.recordAfter.assign(steps.begin(), steps.end());
 
       const physics::PropagationCounters before = propagator.counters();
       const ParticleResult result = runner_.run(job);
@@ -199,7 +215,10 @@ void ParticleWorkers::serve(int fd) {
       pack.put(std::uint64_t{result.valid ? 1u : 0u});
       pack.put(std::uint64_t{after.propagations - before.propagations});
       pack.put(std::uint64_t{after.physicsSteps - before.physicsSteps});
+      pack.put(std::uint64_t{result.recorded.size()});
       pack.put(result.end.data(), stateSize * sizeof(double));
+      for (const std::vector<double>& state : result.recorded)
+        pack.put(state.data(), stateSize * sizeof(double));
       if (writeAll(fd, buffer_.data(), buffer_.size()) != Io::Ok) {
         code = 1;
         break;
@@ -216,12 +235,14 @@ void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob&
   Packer pack(buffer_);
   pack.put(std::uint64_t{index});
   pack.put(std::uint64_t{job.steps});
+  pack.put(std::uint64_t{job.recordAfter.size()});
   pack.put(job.contact.friction);
   pack.put(job.contact.erp);
   pack.put(job.contact.cfm);
   for (int k = 0; k < 3; ++k) pack.put(job.targetReference[k]);
   pack.put(job.start.data(), runner_.stateSize() * sizeof(double));
   pack.put(job.control.data(), runner_.controlSize() * sizeof(double));
+  for (unsigned step : job.recordAfter) pack.put(std::uint64_t{step});
   const Io out = writeAll(worker.fd, buffer_.data(), buffer_.size());
   if (out != Io::Ok) fail(worker, out == Io::Closed ? "closed its socket" : "cannot be written to");
   ++worker.inFlight;
@@ -239,8 +260,16 @@ void ParticleWorkers::receive(Worker& worker, std::vector<ParticleResult>& resul
   physics::PropagationCounters work;
   work.propagations = unpack.u64();
   work.physicsSteps = unpack.u64();
+  const std::uint64_t records = unpack.u64();
+  if (records > kMaxRecords) fail(worker, "announced more recorded states than a motion has");
   result.end.resize(runner_.stateSize());
   unpack.get(result.end.data(), runner_.stateSize() * sizeof(double));
+  result.recorded.assign(records, std::vector<double>(runner_.stateSize()));
+  for (std::vector<double>& state : result.recorded) {
+    const Io more = readAll(worker.fd, state.data(), state.size() * sizeof(double));
+    if (more != Io::Ok)
+      fail(worker, more == Io::Closed ? "closed its socket" : "cannot be read from");
+  }
   runner_.context().propagator().addCounters(work);
   --worker.inFlight;
 }

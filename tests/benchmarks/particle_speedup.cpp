@@ -81,9 +81,14 @@ std::vector<std::vector<planners::ParticleJob>> makeBatches(physics::PlanningCon
     const unsigned minSteps = si->getMinControlDuration();
     const unsigned maxSteps = si->getMaxControlDuration();
     const unsigned steps = minSteps + static_cast<unsigned>(uniform() * (maxSteps - minSteps + 1));
-    batches.push_back(evaluator.particleJobs(start.data(), control.data(),
-                                             std::min(steps, maxSteps), *belief, options.particles,
-                                             1000 * (c + 1)));
+    planners::ParticleRequest request;
+    request.start = start.data();
+    request.control = control.data();
+    request.steps = std::min(steps, maxSteps);
+    request.poses = belief.get();
+    request.particles = options.particles;
+    request.streamSeed = 1000 * (c + 1);
+    batches.push_back(evaluator.particleJobs(request));
   }
   return batches;
 }

@@ -314,5 +314,24 @@ TEST(Execution, TheTargetAndTheGoalStartWhereTheTargetWasSampled) {
   EXPECT_GE(shifted, 15);
 }
 
+TEST(PlanningContextGoal, TheGoalForAStartFollowsItsTargetAndIsNullOtherwise) {
+  PlanningContext context(cans5(), 0, PropagationSettings{});
+  const std::size_t glass = bodyNamed(context.layout(), "glass");
+  std::vector<double> start = context.startState();
+  EXPECT_EQ(context.goalForStart(start.data()), nullptr);  // nothing moved
+  setPlanarPose(start.data(), glass,
+                planarPose(start.data(), glass) + Eigen::Vector3d(0.01, -0.02, 0.3));
+  const std::unique_ptr<WorkspaceGoal> moved = context.goalForStart(start.data());
+  ASSERT_NE(moved, nullptr);
+  // The pre-grasp point turns and shifts with the glass: its offset from the glass is kept.
+  const Eigen::Vector3d before =
+      context.goal().position() - WorldLayout::position(context.startState().data(), glass);
+  const Eigen::Vector3d after = moved->position() - WorldLayout::position(start.data(), glass);
+  EXPECT_NEAR(after.norm(), before.norm(), 1e-9);
+  EXPECT_GT((after - before).norm(), 0.01);  // turned by 0.3 rad
+  EXPECT_NEAR(after.z(), before.z(), 1e-9);
+  EXPECT_DOUBLE_EQ(moved->spec().tolerance, context.goal().spec().tolerance);
+}
+
 }  // namespace
 }  // namespace kautham::physics

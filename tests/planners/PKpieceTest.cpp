@@ -59,8 +59,7 @@ TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
   const long candidates = std::stol(run.property("candidates"));
   const long particles = std::stol(run.property("particles"));
   EXPECT_GT(particles, 0);
-  EXPECT_EQ(particles % 5, 0);           // five per valid candidate
-  EXPECT_LE(particles, 5 * candidates);  // only valid candidates get particles
+  EXPECT_LE(particles, 5 * candidates);  // only valid candidates get particles, at most 5
   ASSERT_EQ(run.outcome.beliefs.size(), run.outcome.controls.size());
   for (double b : run.outcome.beliefs) {
     EXPECT_GE(b, 0.0);
@@ -68,6 +67,36 @@ TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
     // Beliefs are products of fractions of 5 particles.
     EXPECT_NEAR(b * 25.0, std::round(b * 25.0), 1e-9);
   }
+}
+
+TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
+  const std::vector<ParameterOverride> small = {{"particles", "6"}, {"candidates", "4"}};
+  std::vector<ParameterOverride> full = small;
+  full.push_back({"prune_candidates", "0"});
+  const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, small);
+  const PlanRun judgedInFull = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, full);
+  ASSERT_TRUE(pruned.outcome.solved);
+  ASSERT_EQ(pruned.outcome.controls.size(), judgedInFull.outcome.controls.size());
+  for (std::size_t i = 0; i < pruned.outcome.controls.size(); ++i) {
+    EXPECT_EQ(pruned.outcome.controls[i].values, judgedInFull.outcome.controls[i].values) << i;
+    EXPECT_EQ(pruned.outcome.controls[i].steps, judgedInFull.outcome.controls[i].steps) << i;
+  }
+  EXPECT_EQ(pruned.outcome.beliefs, judgedInFull.outcome.beliefs);
+  EXPECT_EQ(pruned.property("candidates"), judgedInFull.property("candidates"));
+  EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
+}
+
+TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBeliefs) {
+  const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
+                           {{"particles", "5"}, {"candidates", "4"}});
+  ASSERT_TRUE(run.outcome.solved);
+  ASSERT_GE(run.outcome.controls.size(), 2u);
+  double product = 1.0;
+  for (double b : run.outcome.beliefs) product *= b;
+  EXPECT_NEAR(std::stod(run.property("solution_path_belief")), product, 1e-6);
+  // The pieces a motion was cut into are merged back: no two neighbours share a control.
+  for (std::size_t i = 1; i < run.outcome.controls.size(); ++i)
+    EXPECT_NE(run.outcome.controls[i].values, run.outcome.controls[i - 1].values) << i;
 }
 
 TEST(PKpieceTest, SameSeedGivesTheSamePlan) {

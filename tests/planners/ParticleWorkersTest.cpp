@@ -30,7 +30,15 @@ std::vector<ParticleJob> someJobs(Scene& scene, unsigned particles) {
   const auto belief =
       ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(), start.data());
   const std::vector<double> control = {0.1, 0.9, 0.0};
-  return evaluator.particleJobs(start.data(), control.data(), 12, *belief, particles, 77);
+  ParticleRequest request;
+  request.start = start.data();
+  request.control = control.data();
+  request.steps = 12;
+  request.poses = belief.get();
+  request.recordAfter = {3, 12};
+  request.particles = particles;
+  request.streamSeed = 77;
+  return evaluator.particleJobs(request);
 }
 
 TEST(ParticleWorkersTest, WorkersGiveTheInlineResultsBitForBitAndCountTheirWork) {
@@ -52,6 +60,8 @@ TEST(ParticleWorkersTest, WorkersGiveTheInlineResultsBitForBitAndCountTheirWork)
   for (std::size_t i = 0; i < jobs.size(); ++i) {
     EXPECT_EQ(pooled[i].valid, inline_[i].valid) << i;
     EXPECT_EQ(pooled[i].end, inline_[i].end) << i;  // exact equality of every double
+    EXPECT_EQ(pooled[i].recorded, inline_[i].recorded) << i;
+    EXPECT_FALSE(pooled[i].recorded.empty()) << i;  // the state after 3 steps, at least
     someMoved = someMoved || pooled[i].end != jobs[i].start;
   }
   EXPECT_TRUE(someMoved);
@@ -112,15 +122,22 @@ TEST(ParticleWorkersTest, MotionEvaluatorGivesTheSameVerdictWithAndWithoutWorker
   const auto belief =
       ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(), start.data());
   const std::vector<double> control = {0.0, 1.0, 0.2};
-  const ParticleVerdict alone =
-      evaluator.runParticles(start.data(), control.data(), 15, *belief, 7, 1234);
+  ParticleRequest request;
+  request.start = start.data();
+  request.control = control.data();
+  request.steps = 15;
+  request.poses = belief.get();
+  request.recordAfter = {5, 15};
+  request.particles = 7;
+  request.streamSeed = 1234;
+  const ParticleVerdict alone = evaluator.runParticles(request);
   evaluator.useWorkers(3);
   EXPECT_EQ(evaluator.threads(), 3u);
-  const ParticleVerdict spread =
-      evaluator.runParticles(start.data(), control.data(), 15, *belief, 7, 1234);
+  const ParticleVerdict spread = evaluator.runParticles(request);
   EXPECT_EQ(spread.stateValidity, alone.stateValidity);
   EXPECT_EQ(spread.interaction, alone.interaction);
   EXPECT_EQ(spread.ends, alone.ends);
+  EXPECT_EQ(spread.recorded, alone.recorded);
   // The world keeps its mean contact parameters for the nominal runs.
   EXPECT_EQ(scene.context.world().contactParameters().friction, scene.problem.physics.friction);
   evaluator.useWorkers(1);

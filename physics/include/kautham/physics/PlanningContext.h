@@ -47,6 +47,10 @@ class PlanningContext {
   void usePlanningRules(ValidityRules rules);
   const WorkspaceGoal& goal() const { return *goal_; }
   WorkspaceGoal& goal() { return *goal_; }
+  /// The goal for a world whose objects start as in `start` rather than as planned: a region
+  /// given relative to an object moves as that object's start pose moved. Null when the goal
+  /// is the same as goal() (it is fixed, a configuration, or its object has not moved).
+  std::unique_ptr<WorkspaceGoal> goalForStart(const double* start) const;
   /// KPIECE's projection: the state space's default one (see WorldStateSpace).
   EndEffectorProjection& projection();
 

@@ -8,7 +8,9 @@
 #include "kautham/physics/UncertaintySampler.h"
 #include "kautham/planners/ObjectPoseBelief.h"
 #include "kautham/planners/ParticleJob.h"
+#include "kautham/planners/ParticleVerdict.h"
 #include "kautham/planners/ParticleWorkers.h"
+#include "kautham/planners/RobotSpread.h"
 
 namespace kautham::planners {
 
@@ -18,16 +20,24 @@ struct NominalRun {
   std::vector<double> end;                  ///< the last valid state
   std::vector<std::vector<double>> states;  ///< the state after each valid step (back() == end)
   unsigned steps = 0;        ///< valid propagation steps (0: the first step was invalid)
-  bool reachedGoal = false;  ///< the run stopped at the first step inside the goal
+  bool reachedGoal = false;  ///< it entered the goal region
+  /// Steps after which it was first in the goal (0: never). Run through the goal, it goes on
+  /// while it stays inside, so states goalFrom..steps are all in the goal.
+  unsigned goalFrom = 0;
 };
 
-/// What the particles of a candidate said (the paper's Algorithm 2, lines 5-17).
-struct ParticleVerdict {
-  double stateValidity = 1.0;  ///< P_state: fraction of particles whose states were all valid
-  double interaction = 1.0;    ///< P_int: fraction whose objects moved at most d
-  std::vector<std::vector<double>> ends;  ///< each particle's final state
-  double goal = 1.0;  ///< fraction of particles that end valid inside the goal region
-  double belief() const { return stateValidity * interaction; }
+/// A candidate motion to judge with particles, and where its particles start.
+struct ParticleRequest {
+  const double* start = nullptr;  ///< the tree's state the candidate starts from
+  const double* control = nullptr;
+  unsigned steps = 0;
+  const ObjectPoseBelief* poses = nullptr;  ///< U_rgn at the start (required)
+  /// The robot states the parent's particles reached; null: every particle starts with the
+  /// robot as in `start`.
+  const RobotSpread* robots = nullptr;
+  std::vector<unsigned> recordAfter;  ///< steps after which each particle's state is kept
+  unsigned particles = 0;             ///< n_p
+  std::uint64_t streamSeed = 0;       ///< particle i draws from the stream streamSeed + i
 };
 
 /// Runs candidate motions through the physics for p-KPIECE: nominally, and as particle
@@ -44,27 +54,31 @@ class MotionEvaluator {
   MotionEvaluator(const MotionEvaluator&) = delete;
   MotionEvaluator& operator=(const MotionEvaluator&) = delete;
 
-  /// Propagates `control` from `start` for up to `steps` steps, keeping the valid prefix.
-  NominalRun runNominal(const double* start, const double* control, unsigned steps);
+  /// Propagates `control` from `start` for up to `steps` steps, keeping the valid prefix. It
+  /// stops at the first state in the goal, or, `throughGoal`, at the last one before the
+  /// motion leaves the goal again.
+  NominalRun runNominal(const double* start, const double* control, unsigned steps,
+                        bool throughGoal = false);
 
   /// Spreads particle jobs over `threads` processes: this one and threads - 1 forked workers
   /// (ParticleWorkers). 1: every job runs inline. Workers from an earlier call are reaped.
   void useWorkers(unsigned threads);
   unsigned threads() const { return workers_ ? static_cast<unsigned>(workers_->size()) + 1 : 1; }
 
-  /// Runs `particles` particle motions of the candidate: start poses drawn from `belief`,
-  /// contact parameters and control noise from the problem's uncertainty; particle i uses the
-  /// random stream `streamSeed + i`, so the verdict does not depend on evaluation order.
-  ParticleVerdict runParticles(const double* start, const double* control, unsigned steps,
-                               const ObjectPoseBelief& belief, unsigned particles,
-                               std::uint64_t streamSeed);
-
-  /// The particle jobs of a candidate: everything random drawn, in particle order, from the
-  /// streams `streamSeed + i`.
-  std::vector<ParticleJob> particleJobs(const double* start, const double* control, unsigned steps,
-                                        const ObjectPoseBelief& belief, unsigned particles,
-                                        std::uint64_t streamSeed) const;
-
+  /// Runs the request's particle motions: start poses drawn from its pose belief, the robot
+  /// from its robot spread, contact parameters and control noise from the problem's
+  /// uncertainty; particle i uses the random stream `streamSeed + i`, so the verdict does not
+  /// depend on evaluation order or on threads().
+  ///
+  /// Particles run in batches of kParticleBatch. After each batch the best belief the
+  /// remaining particles could still give is bounded; once it cannot exceed `toBeat`, the run
+  /// stops and the verdict is `pruned` (a negative `toBeat` never prunes).
+  ParticleVerdict runParticles(const ParticleRequest& request, double toBeat = -1.0);
+  /// The particle jobs of a request: everything random drawn, in particle order.
+  std::vector<ParticleJob> particleJobs(const ParticleRequest& request) const;
+  /// Particles run between two pruning checks: fixed, so the work done (and so every
+  /// statistic) is the same for any number of threads.
+  static constexpr std::size_t kParticleBatch = 4;
   /// The verdict of a nominal run alone: its states are valid (it was kept); the interaction
   /// evaluator judges how far it moved the objects.
   ParticleVerdict judgeNominal(const double* start, const double* end) const;
@@ -77,6 +91,7 @@ class MotionEvaluator {
  private:
   Eigen::Vector3d targetPosition(const double* state) const;
   bool displacementWithinLimit(const double* start, const double* end) const;
+  std::vector<ParticleResult> runJobs(const std::vector<ParticleJob>& jobs);
 
   physics::PlanningContext& context_;
   physics::UncertaintySampler sampler_;

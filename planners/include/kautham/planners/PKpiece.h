@@ -13,6 +13,7 @@
 #include "kautham/planners/MotionEvaluator.h"
 #include "kautham/planners/ObjectPoseBelief.h"
 #include "kautham/planners/ParallelPlanner.h"
+#include "kautham/planners/RobotSpread.h"
 
 namespace kautham::planners {
 
@@ -27,9 +28,18 @@ struct PKpieceSettings {
   double goalBias = 0.05;         ///< probability of expanding one of the motions nearest the goal
   double borderFraction = 0.8;    ///< probability of expanding an exterior cell
   bool uncertainty = true;        ///< false: one nominal particle, nothing sampled ("pKP")
-  /// A candidate ends the search only if at least this fraction of its particles ends valid in
-  /// the goal region (not in the paper: its belief judges validity, not the goal).
+  /// A candidate ends the search only if the plan it ends is estimated to succeed at least this
+  /// often: the path belief to it times the fraction of its particles that end valid in the
+  /// goal region (not in the paper: its belief judges validity, not the goal).
   double goalConfidence = 0.5;
+  /// Cells and motions are judged by the belief of the whole path to a motion (the product
+  /// of its candidates' beliefs) rather than by the motion's own (docs/planners.md).
+  bool pathBelief = true;
+  /// A candidate's particles start from the robot states its parent's particles reached, so
+  /// control noise accumulates along a path (false: from the tree's nominal robot state).
+  bool robotSpread = true;
+  /// Stop judging a candidate once it cannot beat the best one so far (the same choice).
+  bool pruneCandidates = true;
 };
 
 /// p-KPIECE (Muhayyuddin, Moll, Kavraki, Rosell, RA-L 2018; Algorithms 1 and 2): KPIECE whose
@@ -60,18 +70,39 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   struct Candidate;
 
   void addMotion(Motion* motion);
+  /// Adds `motion` to a list of the motions nearest the goal, nearest first, kept short.
+  static void keepIfNear(std::vector<Motion*>& nearest, Motion* motion);
   Motion* selectMotion();
   Motion* selectInCell(const CellData& cell);
   Motion* nearGoalMotion();
   /// Grows the tree from `from`; returns the last motion added, or null.
   Motion* expand(Motion* from);
   Motion* addPiece(Motion* parent, const Candidate& chosen, const std::vector<double>& end,
-                   unsigned steps, std::shared_ptr<const ObjectPoseBelief> poses);
+                   unsigned steps, double fromPathBelief,
+                   std::shared_ptr<const ObjectPoseBelief> poses,
+                   std::shared_ptr<const RobotSpread> robots);
+  /// Steps after which a nominal run is cut into tree motions: where the end effector
+  /// changes cell, and at the end.
+  std::vector<unsigned> pieceEnds(const NominalRun& run) const;
+  /// The robot states the chosen candidate's particles reached after `step` steps.
+  std::shared_ptr<const RobotSpread> robotSpreadAt(const Candidate& chosen, unsigned step) const;
+  /// Candidates are judged by particles (uncertainty on), not by their nominal run alone.
+  bool withParticles() const;
+  /// Where the particles' states after `step` steps are in their recorded states.
+  static std::size_t recordIndex(const Candidate& candidate, unsigned step);
+  /// Ends a goal-reaching candidate at the step where most of its particles are in the goal.
+  void settleInGoal(Candidate& candidate) const;
+  /// The belief cells and motion choice use: the path's or the motion's own (pathBelief).
+  double selectionBelief(const Motion& motion) const;
   Grid::Coord cellOf(const std::vector<double>& state) const;
   bool objectsMoved(const double* start, const double* state) const;
   std::vector<Candidate> sampleCandidates(const Motion& from);
-  const Candidate* chooseCandidate(const std::vector<Candidate>& valid);
+  /// Runs the candidate's particles (or judges its nominal run), pruned against `toBeat`.
+  void judge(Candidate& candidate, const Motion& from, double toBeat);
+  Candidate* chooseCandidate(std::vector<Candidate>& valid, const Motion& from);
   bool reachesGoal(const Candidate& candidate) const;
+  /// The estimated success of the plan that would end with the candidate (goalConfidence).
+  double solutionConfidence(const Candidate& candidate) const;
   static void computeImportance(Grid::Cell* cell, void* planner);
   void recordSolution(const Motion* end, bool exact, double distance);
   std::uint64_t nextStreamSeed();
@@ -87,11 +118,15 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   std::vector<std::unique_ptr<Motion>> motions_;
   std::vector<std::unique_ptr<CellData>> cells_;
   std::vector<Motion*> nearest_;  ///< the motions nearest the goal, nearest first
+  /// The same among the motions a solution may grow from (see addMotion).
+  std::vector<Motion*> goalStarts_;
   unsigned iteration_ = 1;
   double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
   std::uint64_t candidateCount_ = 0;
   std::vector<double> solutionBeliefs_;
+  double solutionPathBelief_ = 1.0;
   ompl::base::State* scratch_ = nullptr;  ///< for projecting raw states
+  std::shared_ptr<const RobotSpread::Part> robotPart_;
 };
 
 }  // namespace kautham::planners

@@ -21,12 +21,16 @@ struct ParticleJob {
   unsigned steps = 0;                                         ///< propagation steps
   physics::ContactParameters contact;                         ///< the sampled D
   Eigen::Vector3d targetReference = Eigen::Vector3d::Zero();  ///< where the target must stay
+  /// Step counts (ascending, at most `steps`) after which the state is kept in the result.
+  std::vector<unsigned> recordAfter;
 };
 
 /// What a particle motion gave.
 struct ParticleResult {
   bool valid = true;        ///< every state of the motion was valid
   std::vector<double> end;  ///< the last state (the first invalid one if it stopped early)
+  /// The valid states after the job's recordAfter steps, as far as the motion stayed valid.
+  std::vector<std::vector<double>> recorded;
 };
 
 /// Runs motions through a planning context's propagator and full validity checker, one
