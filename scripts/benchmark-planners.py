@@ -95,8 +95,8 @@ def main():
                 out = os.path.join(keep, f"kuka_cans_{n}_{planner}_{'_'.join(sets)}_s{seed}.json")
                 solved, seconds = plan(problem, planner, sets, seed, args.time, args.threads, out)
                 results.setdefault((n, name), []).append((solved, seconds))
-                if f"kuka_cans_{n}" == args.validate_problem and solved:
-                    plans[(name, seed)] = out
+                if f"kuka_cans_{n}" == args.validate_problem:
+                    plans[(name, seed)] = out if solved else None
                 print(f"{problem} {name:24} seed {seed}: "
                       f"{'solved' if solved else 'not solved'} in {seconds:.1f} s", flush=True)
 
@@ -105,10 +105,11 @@ def main():
         problem = f"problems/{args.validate_problem}.xml"
         for (name, seed), planFile in sorted(plans.items()):
             if name in ("p-KPIECE, uncertainty", "o-KPIECE", "p-KPIECE, none", "KPIECE"):
-                rates.setdefault(name, []).append((seed, validate(problem, planFile,
-                                                                  args.validate, seed)))
-                print(f"validate {name:24} seed {seed}: {100 * rates[name][-1][1]:.0f} %",
-                      flush=True)
+                # A plan that was not found executes nowhere: it counts as 0 %.
+                rate = validate(problem, planFile, args.validate, seed) if planFile else None
+                rates.setdefault(name, []).append((seed, rate))
+                print(f"validate {name:24} seed {seed}: "
+                      f"{'not solved' if rate is None else f'{100 * rate:.0f} %'}", flush=True)
     write(args, results, rates)
 
 
@@ -144,12 +145,14 @@ def write(args, results, rates):
               "uncertainty, pKPU with it)."]
     if rates:
         lines += ["", f"## Execution under uncertainty ({args.validate_problem})", "",
-                  f"Each solved plan run {args.validate} times by `kautham validate` with the "
-                  "problem's `<Uncertainty>` (sampled object poses, friction, control noise).",
+                  f"Each plan run {args.validate} times by `kautham validate` with the "
+                  "problem's `<Uncertainty>` (sampled object poses, friction, control noise). "
+                  "A seed whose plan was not found in the time limit counts as 0 % in the mean.",
                   "", "| planner | seed: success rate | mean |", "| --- | --- | --- |"]
         for name, values in rates.items():
-            per = ", ".join(f"{seed}: {100 * r:.0f} %" for seed, r in values)
-            mean = 100 * sum(r for _, r in values) / len(values)
+            per = ", ".join(f"{seed}: " + ("not solved" if r is None else f"{100 * r:.0f} %")
+                            for seed, r in values)
+            mean = 100 * sum(r or 0.0 for _, r in values) / len(values)
             lines.append(f"| {name} | {per} | {mean:.0f} % |")
     with open(args.output, "w") as f:
         f.write("\n".join(lines) + "\n")

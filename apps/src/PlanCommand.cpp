@@ -132,7 +132,12 @@ int runPlan(const PlanOptions& options) {
       fmt::print("wrote     {}\n", options.html);
     }
   }
-  if (outcome.solved && !replay.reachedGoal)
+  if (outcome.solved && replay.firstViolation != physics::Violation::None)
+    fmt::print(stderr,
+               "warning: the replayed plan breaks a constraint ({}): expected of a planner that "
+               "checks fewer of them (o-KPIECE knows only whom the robot may touch)\n",
+               physics::toString(replay.firstViolation));
+  else if (outcome.solved && !replay.reachedGoal)
     fmt::print(stderr, "warning: the replayed plan does not reach the goal; please report this\n");
   return outcome.solved && replay.reachedGoal ? kExitSolved : kExitNotSolved;
 }
