@@ -109,10 +109,11 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
   unsigned validStates = 0;
   unsigned validInteractions = 0;
   unsigned inGoal = 0;
+  const std::size_t batch = threads();  // more than kParticleBatch processes: keep all busy
   std::size_t ran = 0;
   try {
     while (ran < jobs.size()) {
-      const std::size_t end = std::min(jobs.size(), ran + kParticleBatch);
+      const std::size_t end = std::min(jobs.size(), ran + std::max(kParticleBatch, batch));
       std::vector<ParticleResult> results =
           runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
       for (std::size_t p = ran; p < end; ++p) {
@@ -124,13 +125,14 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
         const physics::WorkspaceGoal& goal = moved ? *moved : context_.goal();
         const bool interactionOk = displacementWithinLimit(particleStart, result.end.data());
         validStates += result.valid ? 1 : 0;
-        inGoal += result.valid && goal.reached(result.end.data()) ? 1 : 0;
+        inGoal += result.valid && interactionOk && goal.reached(result.end.data()) ? 1 : 0;
         validInteractions += interactionOk ? 1 : 0;
         std::vector<char> recordedInGoal;
         std::vector<char> recordedInteractionOk;
         for (const std::vector<double>& state : result.recorded) {
-          recordedInGoal.push_back(goal.reached(state.data()));
-          recordedInteractionOk.push_back(displacementWithinLimit(particleStart, state.data()));
+          const bool ok = displacementWithinLimit(particleStart, state.data());
+          recordedInteractionOk.push_back(ok);
+          recordedInGoal.push_back(ok && goal.reached(state.data()));
         }
         verdict.ends.push_back(std::move(result.end));
         verdict.endInteractionOk.push_back(interactionOk);
@@ -139,10 +141,11 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
         verdict.recordedInteractionOk.push_back(std::move(recordedInteractionOk));
       }
       ran = end;
-      // Every remaining particle valid is the best case.
+      // Every remaining particle valid is the best case; computed as belief() computes, so
+      // that equal counts round equally and a pruned candidate could at most tie.
       const double remaining = static_cast<double>(jobs.size() - ran);
       const double bound =
-          (validStates + remaining) * (validInteractions + remaining) / (particles * particles);
+          ((validStates + remaining) / particles) * ((validInteractions + remaining) / particles);
       if (ran < jobs.size() && bound <= toBeat) {
         verdict.pruned = true;
         break;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/control/PathControl.h>
@@ -29,11 +31,11 @@ struct PKpiece::Motion {
   double belief = 1.0;      ///< b of the candidate it came from
   double pathBelief = 1.0;  ///< product of the candidates' beliefs from the root to here
   std::shared_ptr<const ObjectPoseBelief> poses;
-  std::shared_ptr<const RobotSpread> robots;  ///< null: the particles start as the state
+  std::shared_ptr<const RobotSpread> robotSpread;  ///< null: particles start as the state
   unsigned expansion = 0;  ///< the iteration that added it: its pieces share the number
   double goalDistance = 0.0;
   CellData* cell = nullptr;
-  bool reachesGoal = false;  ///< in the goal, and enough of its particles were too
+  bool reachesGoal = false;  ///< ends a plan estimated to succeed often enough (goalConfidence)
 };
 
 struct PKpiece::CellData {
@@ -246,7 +248,7 @@ void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
   request.control = candidate.control.data();
   request.steps = candidate.run.steps;
   request.poses = from.poses.get();
-  request.robots = from.robots.get();
+  request.robots = from.robotSpread.get();
   request.recordAfter = candidate.recordAfter;
   request.particles = settings_.particles;
   request.streamSeed = candidate.streamSeed;
@@ -258,8 +260,11 @@ bool PKpiece::withParticles() const { return settings_.uncertainty && settings_.
 
 std::size_t PKpiece::recordIndex(const Candidate& candidate, unsigned step) {
   const auto& steps = candidate.recordAfter;
-  return static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), step) -
-                                  steps.begin());
+  const auto found = std::lower_bound(steps.begin(), steps.end(), step);
+  if (found == steps.end() || *found != step)
+    throw std::logic_error("p-KPIECE: no particle states recorded after step " +
+                           std::to_string(step));
+  return static_cast<std::size_t>(found - steps.begin());
 }
 
 void PKpiece::settleInGoal(Candidate& candidate) const {
@@ -338,7 +343,8 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
     const bool last = end == states.size();
     const bool untouched = !last && !objectsMoved(start, states[end - 1].data());
     parent = addPiece(parent, *chosen, states[end - 1], end - pieceStart, from->pathBelief,
-                      untouched ? from->poses : endPoses, robotSpreadAt(*chosen, end));
+                      untouched ? from->poses : endPoses,
+                      robotSpreadAt(*chosen, end, from->robotSpread));
     pieceStart = end;
   }
   return parent;
@@ -354,13 +360,16 @@ std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {
   return ends;
 }
 
-std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(const Candidate& chosen,
-                                                          unsigned step) const {
-  if (!settings_.robotSpread) return nullptr;
+std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(
+    const Candidate& chosen, unsigned step, std::shared_ptr<const RobotSpread> parents) const {
+  if (!settings_.robotSpread || !withParticles()) return nullptr;
   const std::size_t record = recordIndex(chosen, step);
   std::vector<const std::vector<double>*> states;
   for (const auto& particle : chosen.verdict.recorded)
     if (particle.size() > record) states.push_back(&particle[record]);
+  // No particle got this far (the belief says so): the parent's spread is the best guess;
+  // the nominal robot alone would make what grows from here look certain.
+  if (states.empty()) return parents;
   return RobotSpread::fromStates(robotPart_, states);
 }
 
@@ -384,7 +393,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
                                    const std::vector<double>& end, unsigned steps,
                                    double fromPathBelief,
                                    std::shared_ptr<const ObjectPoseBelief> poses,
-                                   std::shared_ptr<const RobotSpread> robots) {
+                                   std::shared_ptr<const RobotSpread> robotSpread) {
   auto motion = std::make_unique<Motion>();
   motion->state = si_->allocState();
   double* values = physics::WorldStateSpace::values(motion->state);
@@ -397,7 +406,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->pathBelief = fromPathBelief * motion->belief;
   motion->goalDistance = context_.goal().distance(values);
   motion->poses = std::move(poses);
-  motion->robots = std::move(robots);
+  motion->robotSpread = std::move(robotSpread);
   motion->expansion = iteration_;
   motion->reachesGoal = reachesGoal(chosen) && &end == &chosen.run.states.back();
   Motion* raw = motion.get();

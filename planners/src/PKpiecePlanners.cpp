@@ -88,7 +88,8 @@ PlannerRegistry::Entry pKpiece() {
             0.5,
             0.0,
             1.0,
-            "fraction of a goal-reaching candidate's particles that must end in the goal too",
+            "estimated success a plan needs to end the search: the path belief times the "
+            "fraction of the last candidate's particles that end valid in the goal",
             {}},
            {"path_belief",
             ParameterType::Boolean,

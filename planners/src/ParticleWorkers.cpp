@@ -248,7 +248,8 @@ void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob&
   ++worker.inFlight;
 }
 
-void ParticleWorkers::receive(Worker& worker, std::vector<ParticleResult>& results) {
+void ParticleWorkers::receive(Worker& worker, const std::vector<ParticleJob>& jobs,
+                              std::vector<ParticleResult>& results) {
   buffer_.resize(resultSize(runner_));
   const Io in = readAll(worker.fd, buffer_.data(), buffer_.size());
   if (in != Io::Ok) fail(worker, in == Io::Closed ? "closed its socket" : "cannot be read from");
@@ -261,7 +262,8 @@ void ParticleWorkers::receive(Worker& worker, std::vector<ParticleResult>& resul
   work.propagations = unpack.u64();
   work.physicsSteps = unpack.u64();
   const std::uint64_t records = unpack.u64();
-  if (records > kMaxRecords) fail(worker, "announced more recorded states than a motion has");
+  if (records > jobs[index].recordAfter.size())
+    fail(worker, "announced more recorded states than its job asked for");
   result.end.resize(runner_.stateSize());
   unpack.get(result.end.data(), runner_.stateSize() * sizeof(double));
   result.recorded.assign(records, std::vector<double>(runner_.stateSize()));
@@ -306,9 +308,15 @@ std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>&
   for (Worker& w : workers_) w.inFlight = 0;
   std::size_t next = 0;
   std::size_t done = 0;
+  // Round by round, one job per worker, keeping the last job for this process: a batch of
+  // four on three processes runs as 1 + 2 + 1, not 2 + 2 + 0.
   const auto handOut = [&] {
-    for (Worker& w : workers_)
-      for (; w.inFlight < kJobsPerWorker && next < jobs.size(); ++next) send(w, next, jobs[next]);
+    for (unsigned round = 0; round < kJobsPerWorker; ++round)
+      for (Worker& w : workers_)
+        if (w.inFlight <= round && jobs.size() - next > 1) {
+          send(w, next, jobs[next]);
+          ++next;
+        }
   };
   std::vector<pollfd> fds(workers_.size());
   handOut();
@@ -332,7 +340,7 @@ std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>&
         throw std::system_error(errno, std::generic_category(), "particle workers: poll");
       for (std::size_t i = 0; ready > 0 && i < workers_.size(); ++i)
         if (fds[i].fd >= 0 && (fds[i].revents & (POLLIN | POLLHUP | POLLERR))) {
-          receive(workers_[i], results);
+          receive(workers_[i], jobs, results);
           ++done;
         }
     }

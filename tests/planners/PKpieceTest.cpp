@@ -7,6 +7,7 @@
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/physics/UncertaintySampler.h"
+#include "kautham/planners/MotionEvaluator.h"
 #include "kautham/planners/ObjectPoseBelief.h"
 #include "kautham/planners/Solve.h"
 
@@ -181,6 +182,36 @@ TEST(ObjectPoseBeliefTest, StartsAsTheInitialUncertaintyAndRefitsOnlyMovedObject
   EXPECT_GE(after->componentCounts()[objects[0]], 2u);
   for (std::size_t i = 1; i < objects.size(); ++i)
     EXPECT_EQ(after->componentCounts()[objects[i]], 1u);
+}
+
+TEST(MotionEvaluatorTest, ARunThroughTheGoalGoesOnWhileItStaysInside) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_free.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  MotionEvaluator evaluator(context, 0.3);
+  const std::vector<double>& start = context.startState();
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int throughGoal = 0;
+  for (int attempt = 0; attempt < 4000 && throughGoal < 3; ++attempt) {
+    const std::vector<double> control{uniform(rng), uniform(rng), uniform(rng)};
+    const NominalRun first = evaluator.runNominal(start.data(), control.data(), 60);
+    if (!first.reachedGoal) continue;
+    EXPECT_EQ(first.goalFrom, first.steps);  // the default stops on entering
+    const NominalRun through = evaluator.runNominal(start.data(), control.data(), 60, true);
+    ASSERT_TRUE(through.reachedGoal);
+    EXPECT_EQ(through.goalFrom, first.goalFrom);
+    EXPECT_GE(through.steps, through.goalFrom);
+    ASSERT_EQ(through.states.size(), through.steps);
+    for (unsigned s = through.goalFrom; s <= through.steps; ++s)
+      EXPECT_TRUE(context.goal().reached(through.states[s - 1].data())) << s;
+    if (through.steps < 60) {
+      // It stopped because the next step left the goal (or broke a constraint).
+      const NominalRun next = evaluator.runNominal(through.end.data(), control.data(), 1);
+      EXPECT_TRUE(next.steps == 0 || !context.goal().reached(next.end.data()));
+    }
+    ++throughGoal;
+  }
+  EXPECT_EQ(throughGoal, 3);
 }
 
 }  // namespace

@@ -70,14 +70,15 @@ class MotionEvaluator {
   /// uncertainty; particle i uses the random stream `streamSeed + i`, so the verdict does not
   /// depend on evaluation order or on threads().
   ///
-  /// Particles run in batches of kParticleBatch. After each batch the best belief the
-  /// remaining particles could still give is bounded; once it cannot exceed `toBeat`, the run
-  /// stops and the verdict is `pruned` (a negative `toBeat` never prunes).
+  /// Particles run in batches of kParticleBatch (or threads(), if more). After each batch the
+  /// best belief the remaining particles could still give is bounded; once it cannot exceed
+  /// `toBeat`, the run stops and the verdict is `pruned` (a negative `toBeat` never prunes).
+  /// A particle counts as in the goal only if it is valid and moved the objects at most d.
   ParticleVerdict runParticles(const ParticleRequest& request, double toBeat = -1.0);
   /// The particle jobs of a request: everything random drawn, in particle order.
   std::vector<ParticleJob> particleJobs(const ParticleRequest& request) const;
   /// Particles run between two pruning checks: fixed, so the work done (and so every
-  /// statistic) is the same for any number of threads.
+  /// statistic) is the same for any number of threads up to this many.
   static constexpr std::size_t kParticleBatch = 4;
   /// The verdict of a nominal run alone: its states are valid (it was kept); the interaction
   /// evaluator judges how far it moved the objects.

@@ -25,7 +25,7 @@ struct PKpieceSettings {
   double randomCandidate = 0.05;  ///< bias: probability of keeping a random valid candidate
   double beliefWeight = 0.0;      ///< f: weight of the cell belief; <= 0: the number of cells
   double kpieceSelection = 0.1;   ///< probability of choosing a cell's motion as KPIECE does
-  double goalBias = 0.05;         ///< probability of expanding one of the motions nearest the goal
+  double goalBias = 0.2;          ///< probability of expanding one of the motions nearest the goal
   double borderFraction = 0.8;    ///< probability of expanding an exterior cell
   bool uncertainty = true;        ///< false: one nominal particle, nothing sampled ("pKP")
   /// A candidate ends the search only if the plan it ends is estimated to succeed at least this
@@ -80,12 +80,14 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   Motion* addPiece(Motion* parent, const Candidate& chosen, const std::vector<double>& end,
                    unsigned steps, double fromPathBelief,
                    std::shared_ptr<const ObjectPoseBelief> poses,
-                   std::shared_ptr<const RobotSpread> robots);
+                   std::shared_ptr<const RobotSpread> robotSpread);
   /// Steps after which a nominal run is cut into tree motions: where the end effector
   /// changes cell, and at the end.
   std::vector<unsigned> pieceEnds(const NominalRun& run) const;
-  /// The robot states the chosen candidate's particles reached after `step` steps.
-  std::shared_ptr<const RobotSpread> robotSpreadAt(const Candidate& chosen, unsigned step) const;
+  /// The robot states the chosen candidate's particles reached after `step` steps (the
+  /// parent's, `parents`, if none did).
+  std::shared_ptr<const RobotSpread> robotSpreadAt(
+      const Candidate& chosen, unsigned step, std::shared_ptr<const RobotSpread> parents) const;
   /// Candidates are judged by particles (uncertainty on), not by their nominal run alone.
   bool withParticles() const;
   /// Where the particles' states after `step` steps are in their recorded states.

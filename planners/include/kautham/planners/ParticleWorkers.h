@@ -48,7 +48,8 @@ class ParticleWorkers {
 
   [[noreturn]] void serve(int fd);
   void send(Worker& worker, std::size_t index, const ParticleJob& job);
-  void receive(Worker& worker, std::vector<ParticleResult>& results);
+  void receive(Worker& worker, const std::vector<ParticleJob>& jobs,
+               std::vector<ParticleResult>& results);
   [[noreturn]] void fail(Worker& worker, const char* what);
   void shutdown() noexcept;
 
