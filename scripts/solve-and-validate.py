@@ -9,9 +9,12 @@ how robustly a scene is solved; scripts/benchmark-planners.py measures speed at 
 `kautham validate --runs R` on the plan it found. A seed without a plan counts as 0 % in the
 mean success rate: it executes nowhere.
 
+The raw numbers go to --results (docs/solve-and-validate.json); runs already there for other
+problems, planners or seeds are kept, so a later run with --planners adds rows.
+
 Usage: scripts/solve-and-validate.py [--problems kuka_cans_10 yumi_cans_10]
-           [--seeds 1 2 3 4 5] [--time 180] [--threads 2] [--runs 100] [--keep DIR]
-           [-o docs/solve-and-validate.md]
+           [--planners NAME ...] [--seeds 1 2 3 4 5] [--time 180] [--threads 2] [--runs 100]
+           [--keep DIR] [--results docs/solve-and-validate.json] [-o docs/solve-and-validate.md]
 Needs build/apps/kautham (scripts/build.sh) or $KAUTHAM; standard library only.
 """
 
@@ -29,9 +32,12 @@ KAUTHAM = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham
 # name in the tables -> planner and its --set overrides
 PLANNERS = [
     ("p-KPIECE, n_p = 15", "p-KPIECE", ["uncertainty=1", "particles=15"]),
+    ("p-KPIECE, n_p = 15, goal_confidence 0.75", "p-KPIECE",
+     ["uncertainty=1", "particles=15", "goal_confidence=0.75"]),
     ("p-KPIECE, no uncertainty", "p-KPIECE", ["uncertainty=0"]),
     ("o-KPIECE", "o-KPIECE", []),
 ]
+DEFAULT_PLANNERS = ["p-KPIECE, n_p = 15", "p-KPIECE, no uncertainty", "o-KPIECE"]
 
 
 def run(command):
@@ -47,6 +53,11 @@ def plan(problem, planner, sets, seed, limit, threads, out):
     result = run(command)
     if result.returncode not in (0, 1) or not os.path.exists(out):
         sys.exit(f"solve-and-validate: {' '.join(command)} failed:\n{result.stderr}")
+    return read_plan(out)
+
+
+def read_plan(out):
+    """(solved, planning time, controls, path belief or None) of a plan file."""
     with open(out) as f:
         data = json.load(f)
     properties = dict(data["statistics"].get("planner", {}))
@@ -72,56 +83,83 @@ def validate(problem, plan_file, runs, seed):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--problems", nargs="+", default=["kuka_cans_10", "yumi_cans_10"])
+    parser.add_argument("--planners", nargs="+", default=DEFAULT_PLANNERS,
+                        choices=[name for name, _, _ in PLANNERS])
     parser.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4, 5])
     parser.add_argument("--time", type=float, default=180.0)
     parser.add_argument("--threads", type=int, default=2)
     parser.add_argument("--runs", type=int, default=100)
     parser.add_argument("--keep", help="folder for the plan files (default: a temporary one)")
+    parser.add_argument("--reuse-plans", action="store_true",
+                        help="validate the plan files already in --keep instead of planning")
+    parser.add_argument("--results", default=os.path.join(ROOT, "docs", "solve-and-validate.json"))
     parser.add_argument("-o", "--output",
                         default=os.path.join(ROOT, "docs", "solve-and-validate.md"))
     args = parser.parse_args()
     keep = args.keep or tempfile.mkdtemp(prefix="kautham-solve-")
     os.makedirs(keep, exist_ok=True)
 
-    rows = {}  # (problem, name) -> list of per-seed dicts
+    results = []
+    if os.path.exists(args.results):
+        with open(args.results) as f:
+            results = json.load(f)["runs"]
     for name_problem in args.problems:
         problem = f"problems/{name_problem}.xml"
         for name, planner, sets in PLANNERS:
+            if name not in args.planners:
+                continue
             for seed in args.seeds:
                 out = os.path.join(keep, f"{name_problem}_{planner}_{'_'.join(sets)}_s{seed}.json")
-                solved, seconds, controls, belief = plan(problem, planner, sets, seed, args.time,
-                                                         args.threads, out)
+                if args.reuse_plans and os.path.exists(out):
+                    solved, seconds, controls, belief = read_plan(out)
+                else:
+                    solved, seconds, controls, belief = plan(problem, planner, sets, seed,
+                                                             args.time, args.threads, out)
                 rate, failures = validate(problem, out, args.runs, seed) if solved else (None, {})
-                rows.setdefault((name_problem, name), []).append(
-                    {"seed": seed, "solved": solved, "time": seconds, "controls": controls,
-                     "belief": belief, "rate": rate, "failures": failures})
+                results = [r for r in results if (r["problem"], r["planner"], r["seed"]) !=
+                           (name_problem, name, seed)]
+                results.append({"problem": name_problem, "planner": name, "seed": seed,
+                                "time_limit": args.time, "solved": solved, "time": seconds,
+                                "controls": controls, "belief": belief, "rate": rate,
+                                "failures": failures})
                 shown = "-" if rate is None else f"{100 * rate:.0f} %"
                 print(f"{name_problem} {name:26} seed {seed}: "
                       f"{'solved' if solved else 'not solved'} in {seconds:.1f} s, "
                       f"executions {shown}", flush=True)
-    write(args, rows)
-
-
-def write(args, rows):
     commit = run(["git", "rev-parse", "--short", "HEAD"]).stdout.strip()
+    with open(args.results, "w") as f:
+        json.dump({"commit": commit, "date": str(datetime.date.today()), "runs": results}, f,
+                  indent=1)
+    rows = {}  # (problem, name) -> per-seed dicts, in seed order
+    for r in sorted(results, key=lambda r: r["seed"]):
+        rows.setdefault((r["problem"], r["planner"]), []).append(r)
+    write(args, rows, commit)
+
+
+def write(args, rows, commit):
     lines = [
         "# Solving the 10-object scenes and executing the plans under uncertainty",
         "",
-        f"Made by `scripts/solve-and-validate.py` on {datetime.date.today()} (commit {commit}): "
-        f"`kautham plan` with a {args.time:g} s limit and `--threads {args.threads}` on a "
-        f"machine with 2 cores, seeds {' '.join(map(str, args.seeds))}; each plan found is "
-        f"executed {args.runs} times by `kautham validate` (object poses, friction and control "
+        f"Made by `scripts/solve-and-validate.py` (last run {datetime.date.today()}, commit "
+        f"{commit}; raw numbers in `{os.path.relpath(args.results, ROOT)}`): `kautham plan` "
+        f"with a {args.time:g} s limit and `--threads {args.threads}` on a machine with 2 "
+        f"cores; each plan found is executed {args.runs} times by `kautham validate` (object "
+        "poses, friction and control "
         "noise drawn from the problem's `<Uncertainty>`, every constraint checked). A seed "
         "without a plan counts as 0 % in the mean. Each seed cell: planning time (s), controls, "
         "the planner's path belief where it has one, and the execution success rate.",
         "",
     ]
-    for name_problem in args.problems:
+    problems = sorted({problem for problem, _ in rows})
+    for name_problem in problems:
+        seeds = sorted({r["seed"] for (p, _), runs in rows.items() if p == name_problem
+                        for r in runs})
         lines += [f"## {name_problem}", "",
-                  "| planner | solved | " + " | ".join(f"seed {s}" for s in args.seeds) +
+                  "| planner | solved | " + " | ".join(f"seed {s}" for s in seeds) +
                   " | mean success |",
-                  "| --- | --- | " + " | ".join("---" for _ in args.seeds) + " | --- |"]
-        for name, _, _ in PLANNERS:
+                  "| --- | --- | " + " | ".join("---" for _ in seeds) + " | --- |"]
+        names = [name for name, _, _ in PLANNERS if (name_problem, name) in rows]
+        for name in names:
             runs = rows[(name_problem, name)]
             cells = []
             for r in runs:
@@ -136,7 +174,7 @@ def write(args, rows):
             lines.append(f"| {name} | {solved}/{len(runs)} | " + " | ".join(cells) +
                          f" | {mean:.0f} % |")
         lines += ["", "Failures of the executions, summed over the seeds:", ""]
-        for name, _, _ in PLANNERS:
+        for name in names:
             total = {}
             for r in rows[(name_problem, name)]:
                 for reason, count in r["failures"].items():
