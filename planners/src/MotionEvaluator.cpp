@@ -27,27 +27,45 @@ void MotionEvaluator::useWorkers(unsigned threads) {
   if (threads > 1) workers_ = std::make_unique<ParticleWorkers>(runner_, threads - 1);
 }
 
+ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion& motion,
+                                        bool throughGoal) const {
+  ParticleJob job;
+  job.start.assign(start, start + stateSize_);
+  job.control = motion.control;
+  job.steps = motion.steps;
+  job.contact = context_.world().contactParameters();
+  job.targetReference = context_.validityChecker().targetStart();
+  for (unsigned s = 1; s <= motion.steps; ++s) job.recordAfter.push_back(s);
+  job.goalStop = throughGoal ? GoalStop::Leaving : GoalStop::Entering;
+  return job;
+}
+
+NominalRun MotionEvaluator::nominalRun(const double* start, ParticleResult&& result) const {
+  NominalRun run;
+  run.steps = static_cast<unsigned>(result.recorded.size());
+  run.states = std::move(result.recorded);
+  run.end = run.states.empty() ? std::vector<double>(start, start + stateSize_) : run.states.back();
+  run.goalFrom = result.goalFrom;
+  run.reachedGoal = result.goalFrom > 0;
+  return run;
+}
+
 NominalRun MotionEvaluator::runNominal(const double* start, const double* control, unsigned steps,
                                        bool throughGoal) {
-  NominalRun run;
-  run.end.assign(start, start + stateSize_);
-  std::vector<double> next(stateSize_);
-  for (unsigned i = 0; i < steps; ++i) {
-    if (!runner_.step(run.end.data(), control, next.data(),
-                      context_.validityChecker().targetStart()))
-      break;
-    const bool inGoal = context_.goal().reached(next.data());
-    if (run.reachedGoal && !inGoal) break;  // left the goal: end at its last state inside
-    run.end.swap(next);
-    run.states.push_back(run.end);
-    run.steps = i + 1;
-    if (inGoal && !run.reachedGoal) {
-      run.reachedGoal = true;
-      run.goalFrom = run.steps;
-      if (!throughGoal) break;
-    }
-  }
-  return run;
+  const NominalMotion motion{std::vector<double>(control, control + controlSize_), steps};
+  return nominalRun(start, runner_.run(nominalJob(start, motion, throughGoal)));
+}
+
+std::vector<NominalRun> MotionEvaluator::runNominals(const double* start,
+                                                     const std::vector<NominalMotion>& motions,
+                                                     bool throughGoal) {
+  std::vector<ParticleJob> jobs;
+  for (const NominalMotion& motion : motions)
+    jobs.push_back(nominalJob(start, motion, throughGoal));
+  std::vector<ParticleResult> results = runJobs(jobs);
+  std::vector<NominalRun> runs;
+  for (ParticleResult& result : results) runs.push_back(nominalRun(start, std::move(result)));
+  return runs;
 }
 
 Eigen::Vector3d MotionEvaluator::targetPosition(const double* state) const {

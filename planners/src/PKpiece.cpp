@@ -82,6 +82,13 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   addPlannerProgressProperty("cells INTEGER", [this] { return std::to_string(cells_.size()); });
   addPlannerProgressProperty("candidates INTEGER",
                              [this] { return std::to_string(candidateCount_); });
+  // How near the search came to ending: candidates that entered the goal, and the best
+  // estimated success among them (goal_confidence is what ends the search).
+  addPlannerProgressProperty("goal_candidates INTEGER",
+                             [this] { return std::to_string(goalCandidates_); });
+  addPlannerProgressProperty("best_goal_confidence REAL", [this] {
+    return goalCandidates_ == 0 ? std::string("nan") : std::to_string(bestGoalConfidence_);
+  });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -111,6 +118,8 @@ void PKpiece::clear() {
   iteration_ = 1;
   beliefMeanSum_ = 0.0;
   candidateCount_ = 0;
+  goalCandidates_ = 0;
+  bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();
 }
 
@@ -210,16 +219,22 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
   const unsigned maxSteps = si->getMaxControlDuration();
   const std::size_t dimension = si->getControlSpace()->getDimension();
   const double* start = physics::WorldStateSpace::values(from.state);
-  std::vector<Candidate> valid;
-  for (unsigned c = 0; c < settings_.candidates; ++c) {
-    Candidate candidate;
-    candidate.control.resize(dimension);
-    for (double& u : candidate.control) u = rng_.uniformReal(-1.0, 1.0);
-    const unsigned steps = static_cast<unsigned>(
+  // Everything random is drawn first; the nominal runs then go to the worker processes too.
+  std::vector<NominalMotion> motions(settings_.candidates);
+  for (NominalMotion& motion : motions) {
+    motion.control.resize(dimension);
+    for (double& u : motion.control) u = rng_.uniformReal(-1.0, 1.0);
+    motion.steps = static_cast<unsigned>(
         rng_.uniformInt(static_cast<int>(minSteps), static_cast<int>(maxSteps)));
-    candidate.run = evaluator_.runNominal(start, candidate.control.data(), steps, withParticles());
-    ++candidateCount_;
-    if (candidate.run.steps == 0) continue;  // invalid from its first step
+  }
+  std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, withParticles());
+  candidateCount_ += motions.size();
+  std::vector<Candidate> valid;
+  for (std::size_t c = 0; c < motions.size(); ++c) {
+    if (runs[c].steps == 0) continue;  // invalid from its first step
+    Candidate candidate;
+    candidate.control = std::move(motions[c].control);
+    candidate.run = std::move(runs[c]);
     candidate.streamSeed = nextStreamSeed();
     candidate.fromPathBelief = from.pathBelief;
     candidate.pieceEnds = pieceEnds(candidate.run);
@@ -306,6 +321,8 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
   for (Candidate& c : valid) {
     if (!c.run.reachedGoal) continue;
     judge(c, from, -1.0);
+    ++goalCandidates_;
+    bestGoalConfidence_ = std::max(bestGoalConfidence_, solutionConfidence(c));
     if (reachesGoal(c) && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
   }
   if (best) return best;

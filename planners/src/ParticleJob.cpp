@@ -43,11 +43,21 @@ ParticleResult ParticleRunner::run(const ParticleJob& job) {
   auto record = job.recordAfter.begin();
   for (unsigned i = 0; i < job.steps && result.valid; ++i) {
     result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference);
+    bool stop = false;
+    if (result.valid && job.goalStop != GoalStop::Ignore) {
+      const bool inGoal = context_.goal().reached(next.data());
+      if (result.goalFrom > 0 && !inGoal) break;  // left the goal: end at its last state inside
+      if (inGoal && result.goalFrom == 0) {
+        result.goalFrom = i + 1;
+        stop = job.goalStop == GoalStop::Entering;
+      }
+    }
     result.end.swap(next);
     if (result.valid && record != job.recordAfter.end() && *record == i + 1) {
       result.recorded.push_back(result.end);
       ++record;
     }
+    if (stop) break;
   }
   return result;
 }

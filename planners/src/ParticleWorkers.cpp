@@ -23,12 +23,13 @@ namespace {
 // runs a job of its own before handing out the next.
 constexpr unsigned kJobsPerWorker = 2;
 
-// Messages: a job is [index, steps, n] (uint64), contact (3 doubles), target reference (3),
-// start state, control, then its n record steps (uint64); a result is [index, valid,
-// propagations, physics steps, n] (uint64), end state, then its n recorded states.
+// Messages: a job is [index, steps, goal stop, n] (uint64), contact (3 doubles), target
+// reference (3), start state, control, then its n record steps (uint64); a result is [index,
+// valid, goal from, propagations, physics steps, n] (uint64), end state, then its n recorded
+// states.
 // Each is read as its fixed part, then the n items that part announces.
-constexpr std::size_t kJobHeader = 3 * sizeof(std::uint64_t) + 6 * sizeof(double);
-constexpr std::size_t kResultHeader = 5 * sizeof(std::uint64_t);
+constexpr std::size_t kJobHeader = 4 * sizeof(std::uint64_t) + 6 * sizeof(double);
+constexpr std::size_t kResultHeader = 6 * sizeof(std::uint64_t);
 
 std::size_t jobSize(const ParticleRunner& runner) {
   return kJobHeader + (runner.stateSize() + runner.controlSize()) * sizeof(double);
@@ -188,6 +189,7 @@ void ParticleWorkers::serve(int fd) {
       Unpacker unpack(buffer_);
       const std::uint64_t index = unpack.u64();
       job.steps = static_cast<unsigned>(unpack.u64());
+      job.goalStop = static_cast<GoalStop>(unpack.u64());
       const std::uint64_t records = unpack.u64();
       job.contact.friction = unpack.real();
       job.contact.erp = unpack.real();
@@ -213,6 +215,7 @@ void ParticleWorkers::serve(int fd) {
       Packer pack(buffer_);
       pack.put(index);
       pack.put(std::uint64_t{result.valid ? 1u : 0u});
+      pack.put(std::uint64_t{result.goalFrom});
       pack.put(std::uint64_t{after.propagations - before.propagations});
       pack.put(std::uint64_t{after.physicsSteps - before.physicsSteps});
       pack.put(std::uint64_t{result.recorded.size()});
@@ -235,6 +238,7 @@ void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob&
   Packer pack(buffer_);
   pack.put(std::uint64_t{index});
   pack.put(std::uint64_t{job.steps});
+  pack.put(static_cast<std::uint64_t>(job.goalStop));
   pack.put(std::uint64_t{job.recordAfter.size()});
   pack.put(job.contact.friction);
   pack.put(job.contact.erp);
@@ -258,6 +262,7 @@ void ParticleWorkers::receive(Worker& worker, const std::vector<ParticleJob>& jo
   if (index >= results.size()) fail(worker, "answered a job it was not given");
   ParticleResult& result = results[index];
   result.valid = unpack.u64() != 0;
+  result.goalFrom = static_cast<unsigned>(unpack.u64());
   physics::PropagationCounters work;
   work.propagations = unpack.u64();
   work.physicsSteps = unpack.u64();

@@ -144,6 +144,27 @@ TEST(ParticleWorkersTest, MotionEvaluatorGivesTheSameVerdictWithAndWithoutWorker
   EXPECT_EQ(evaluator.threads(), 1u);
 }
 
+TEST(ParticleWorkersTest, NominalRunsInWorkersAreTheRunsOneByOne) {
+  Scene scene;
+  MotionEvaluator evaluator(scene.context, 0.05);
+  const std::vector<double>& start = scene.context.startState();
+  const std::vector<NominalMotion> motions = {
+      {{0.0, 1.0, 0.2}, 15}, {{0.5, -0.3, 0.0}, 8}, {{-1.0, 0.2, 0.9}, 20}, {{0.1, 0.9, 0.0}, 3}};
+  std::vector<NominalRun> alone;
+  for (const NominalMotion& m : motions)
+    alone.push_back(evaluator.runNominal(start.data(), m.control.data(), m.steps, true));
+  evaluator.useWorkers(2);
+  const std::vector<NominalRun> spread = evaluator.runNominals(start.data(), motions, true);
+  ASSERT_EQ(spread.size(), motions.size());
+  for (std::size_t i = 0; i < motions.size(); ++i) {
+    EXPECT_EQ(spread[i].steps, alone[i].steps) << i;
+    EXPECT_EQ(spread[i].states, alone[i].states) << i;
+    EXPECT_EQ(spread[i].end, alone[i].end) << i;
+    EXPECT_EQ(spread[i].goalFrom, alone[i].goalFrom) << i;
+    EXPECT_GT(spread[i].steps, 0u) << i;
+  }
+}
+
 PlanOutcome planWithThreads(const std::string& threads) {
   const core::Problem problem =
       core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));

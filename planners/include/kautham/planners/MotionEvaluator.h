@@ -26,6 +26,12 @@ struct NominalRun {
   unsigned goalFrom = 0;
 };
 
+/// A candidate's control, held for up to `steps` propagation steps.
+struct NominalMotion {
+  std::vector<double> control;
+  unsigned steps = 0;
+};
+
 /// A candidate motion to judge with particles, and where its particles start.
 struct ParticleRequest {
   const double* start = nullptr;  ///< the tree's state the candidate starts from
@@ -59,6 +65,10 @@ class MotionEvaluator {
   /// motion leaves the goal again.
   NominalRun runNominal(const double* start, const double* control, unsigned steps,
                         bool throughGoal = false);
+  /// runNominal for several motions from one start, spread over the worker processes like
+  /// particles (the same runs as one by one, in the order given).
+  std::vector<NominalRun> runNominals(const double* start,
+                                      const std::vector<NominalMotion>& motions, bool throughGoal);
 
   /// Spreads particle jobs over `threads` processes: this one and threads - 1 forked workers
   /// (ParticleWorkers). 1: every job runs inline. Workers from an earlier call are reaped.
@@ -92,6 +102,9 @@ class MotionEvaluator {
  private:
   Eigen::Vector3d targetPosition(const double* state) const;
   bool displacementWithinLimit(const double* start, const double* end) const;
+  /// A nominal run as a job: the mean contact parameters, the exact control, every state kept.
+  ParticleJob nominalJob(const double* start, const NominalMotion& motion, bool throughGoal) const;
+  NominalRun nominalRun(const double* start, ParticleResult&& result) const;
   std::vector<ParticleResult> runJobs(const std::vector<ParticleJob>& jobs);
 
   physics::PlanningContext& context_;

@@ -125,6 +125,8 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   unsigned iteration_ = 1;
   double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
   std::uint64_t candidateCount_ = 0;
+  std::uint64_t goalCandidates_ = 0;  ///< candidates whose nominal run entered the goal
+  double bestGoalConfidence_ = 0.0;   ///< the best solutionConfidence among them
   std::vector<double> solutionBeliefs_;
   double solutionPathBelief_ = 1.0;
   ompl::base::State* scratch_ = nullptr;  ///< for projecting raw states
