@@ -9,7 +9,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh
 mkdir -p out
-problem=problems/kuka_cans_5.xml
+problem=problems/kuka_cans_10.xml
 ./build/apps/kautham plan "$problem" --planner p-KPIECE --seed 1 --threads "$(nproc)" \
   -o out/plan.json --html out/plan.html "$@"
 ./build/apps/kautham validate "$problem" out/plan.json --runs 100 --seed 1
