@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -75,7 +76,8 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       streamBase_(static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()))
                   << 20),
       grid_(context.projection().getDimension()),
-      robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())) {
+      robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
+      steering_(context, evaluator_) {
   specs_.approximateSolutions = true;
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
@@ -205,7 +207,8 @@ PKpiece::Motion* PKpiece::selectInCell(const CellData& cell) {
 }
 
 PKpiece::Motion* PKpiece::selectMotion() {
-  if (!goalStarts_.empty() && rng_.uniform01() < settings_.goalBias) return nearGoalMotion();
+  steerNext_ = !goalStarts_.empty() && rng_.uniform01() < settings_.goalBias;
+  if (steerNext_) return nearGoalMotion();
   const bool exterior = grid_.countExternal() > 0 &&
                         (grid_.countInternal() == 0 || rng_.uniform01() < settings_.borderFraction);
   Grid::Cell* cell = exterior ? grid_.topExternal() : grid_.topInternal();
@@ -227,6 +230,9 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
     motion.steps = static_cast<unsigned>(
         rng_.uniformInt(static_cast<int>(minSteps), static_cast<int>(maxSteps)));
   }
+  // A goal-biased expansion tries one candidate aimed at the goal (GoalSteering).
+  if (steerNext_ && settings_.goalSteering)
+    if (std::optional<NominalMotion> steered = steering_.towardsGoal(start)) motions[0] = *steered;
   std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, withParticles());
   candidateCount_ += motions.size();
   std::vector<Candidate> valid;

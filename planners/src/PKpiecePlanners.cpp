@@ -115,6 +115,14 @@ PlannerRegistry::Entry pKpiece() {
             "stop judging a candidate once it cannot beat the best so far (the same choice, "
             "less work)",
             {}},
+           {"goal_steering",
+            ParameterType::Boolean,
+            1,
+            0,
+            1,
+            "in a goal-biased expansion, aim one candidate at the goal (a numerical Jacobian "
+            "from probe steps)",
+            {}},
            // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
            goalBias(0.2),
            {"border_fraction",
@@ -142,6 +150,7 @@ PlannerRegistry::Entry pKpiece() {
             settings.pathBelief = p.boolean("path_belief");
             settings.robotSpread = p.boolean("robot_spread");
             settings.pruneCandidates = p.boolean("prune_candidates");
+            settings.goalSteering = p.boolean("goal_steering");
             settings.borderFraction = p.real("border_fraction");
             return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, settings));
           }};

@@ -1,9 +1,11 @@
-// The robot states a p-KPIECE motion's particles reached, and particles that start from them.
+// The robot states a p-KPIECE motion's particles reached, and particles that start from them;
+// the steering control of goal-biased expansions.
 
 #include <gtest/gtest.h>
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
+#include "kautham/planners/GoalSteering.h"
 #include "kautham/planners/MotionEvaluator.h"
 #include "kautham/planners/RobotSpread.h"
 
@@ -91,6 +93,29 @@ TEST(RobotSpreadTest, ParticlesStartWithTheRobotOfTheirSampleAndTheirOwnObjectPo
       if (!isRobotIndex(layout, index)) objectsSampled |= jobs[p].start[index] != start[index];
     EXPECT_TRUE(objectsSampled) << p;
   }
+}
+
+TEST(GoalSteeringTest, TheSteeredMotionBringsTheGripperMuchCloserToTheGoal) {
+  Scene scene;
+  MotionEvaluator evaluator(scene.context, 0.3);
+  const GoalSteering steering(scene.context, evaluator);
+  const std::vector<double>& start = scene.context.startState();
+  const std::optional<NominalMotion> motion = steering.towardsGoal(start.data());
+  ASSERT_TRUE(motion.has_value());
+  for (double u : motion->control) {
+    EXPECT_GE(u, -1.0);
+    EXPECT_LE(u, 1.0);
+  }
+  const NominalRun run =
+      evaluator.runNominal(start.data(), motion->control.data(), motion->steps, true);
+  ASSERT_GT(run.steps, 0u);
+  const physics::WorkspaceGoal& goal = scene.context.goal();
+  const double before =
+      (scene.context.layout().goalLinkPosition(start.data()) - goal.position()).norm();
+  const double after =
+      (scene.context.layout().goalLinkPosition(run.end.data()) - goal.position()).norm();
+  EXPECT_GT(before, 0.05);
+  EXPECT_LT(after, 0.5 * before) << before << " -> " << after;
 }
 
 }  // namespace

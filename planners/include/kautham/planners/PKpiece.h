@@ -10,6 +10,7 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/BeliefReporter.h"
+#include "kautham/planners/GoalSteering.h"
 #include "kautham/planners/MotionEvaluator.h"
 #include "kautham/planners/ObjectPoseBelief.h"
 #include "kautham/planners/ParallelPlanner.h"
@@ -40,6 +41,8 @@ struct PKpieceSettings {
   bool robotSpread = true;
   /// Stop judging a candidate once it cannot beat the best one so far (the same choice).
   bool pruneCandidates = true;
+  /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
+  bool goalSteering = true;
 };
 
 /// p-KPIECE (Muhayyuddin, Moll, Kavraki, Rosell, RA-L 2018; Algorithms 1 and 2): KPIECE whose
@@ -131,6 +134,8 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   double solutionPathBelief_ = 1.0;
   ompl::base::State* scratch_ = nullptr;  ///< for projecting raw states
   std::shared_ptr<const RobotSpread::Part> robotPart_;
+  GoalSteering steering_;
+  bool steerNext_ = false;  ///< the motion being expanded was chosen by the goal bias
 };
 
 }  // namespace kautham::planners
