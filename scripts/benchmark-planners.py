@@ -19,12 +19,11 @@ import datetime
 import json
 import os
 import statistics
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-KAUTHAM = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham"))
+import kautham_runs
+from kautham_runs import KAUTHAM, ROOT, run
 
 # name in the table -> planner and its --set overrides
 PLANNERS = [
@@ -38,10 +37,6 @@ PLANNERS = [
 PAPER = {5: (100, 2.89, 100, 9.88), 10: (100, 5.96, 100, 14.52), 15: (100, 9.15, 90, 29.43),
          20: (100, 16.78, 86, 47.61), 25: (96, 26.09, 73, 72.28), 30: (90, 41.21, 66, 103.07),
          35: (73, 49.62, 53, 134.94), 40: (60, 71.64, 40, 182.19)}
-
-
-def run(command):
-    return subprocess.run(command, cwd=ROOT, capture_output=True, text=True)
 
 
 def plan(problem, planner, sets, seed, limit, threads, out):
@@ -60,15 +55,7 @@ def plan(problem, planner, sets, seed, limit, threads, out):
 
 
 def validate(problem, planFile, runs, seed):
-    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
-        report = f.name
-    result = run([KAUTHAM, "validate", problem, planFile, "--runs", str(runs), "--seed",
-                  str(seed), "--json", report])
-    if result.returncode != 0:
-        sys.exit(f"benchmark: validate failed:\n{result.stderr}")
-    with open(report) as f:
-        data = json.load(f)
-    os.unlink(report)
+    data = kautham_runs.validate(problem, planFile, runs, seed, "benchmark")
     return data["successes"] / data["runs"]
 
 

@@ -22,12 +22,11 @@ import argparse
 import datetime
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-KAUTHAM = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham"))
+import kautham_runs
+from kautham_runs import KAUTHAM, ROOT, run
 
 # name in the tables -> planner and its --set overrides
 PLANNERS = [
@@ -38,10 +37,6 @@ PLANNERS = [
     ("o-KPIECE", "o-KPIECE", []),
 ]
 DEFAULT_PLANNERS = ["p-KPIECE, n_p = 15", "p-KPIECE, no uncertainty", "o-KPIECE"]
-
-
-def run(command):
-    return subprocess.run(command, cwd=ROOT, capture_output=True, text=True)
 
 
 def plan(problem, planner, sets, seed, limit, threads, out):
@@ -68,15 +63,7 @@ def read_plan(out):
 
 def validate(problem, plan_file, runs, seed):
     """Returns (success rate, failure counts)."""
-    with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
-        report = f.name
-    result = run([KAUTHAM, "validate", problem, plan_file, "--runs", str(runs), "--seed",
-                  str(seed), "--json", report])
-    if result.returncode != 0:
-        sys.exit(f"solve-and-validate: validate failed:\n{result.stderr}")
-    with open(report) as f:
-        data = json.load(f)
-    os.unlink(report)
+    data = kautham_runs.validate(problem, plan_file, runs, seed, "solve-and-validate")
     return data["successes"] / data["runs"], data["failures"]
 
 

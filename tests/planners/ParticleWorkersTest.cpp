@@ -23,6 +23,22 @@ struct Scene {
   physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
 };
 
+/// A request for `particles` particles of `control` from the scene's start, with the initial
+/// pose uncertainty; states are kept after `recordAfter` steps.
+ParticleRequest startRequest(const std::vector<double>& start, const std::vector<double>& control,
+                             unsigned steps, const ObjectPoseBelief& poses, unsigned particles,
+                             std::uint64_t seed, std::vector<unsigned> recordAfter) {
+  ParticleRequest request;
+  request.start = start.data();
+  request.control = control.data();
+  request.steps = steps;
+  request.poses = &poses;
+  request.recordAfter = std::move(recordAfter);
+  request.particles = particles;
+  request.streamSeed = seed;
+  return request;
+}
+
 /// Particle jobs of a push straight ahead from the start, drawn as p-KPIECE draws them.
 std::vector<ParticleJob> someJobs(Scene& scene, unsigned particles) {
   MotionEvaluator evaluator(scene.context, 0.3);
@@ -30,15 +46,7 @@ std::vector<ParticleJob> someJobs(Scene& scene, unsigned particles) {
   const auto belief =
       ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(), start.data());
   const std::vector<double> control = {0.1, 0.9, 0.0};
-  ParticleRequest request;
-  request.start = start.data();
-  request.control = control.data();
-  request.steps = 12;
-  request.poses = belief.get();
-  request.recordAfter = {3, 12};
-  request.particles = particles;
-  request.streamSeed = 77;
-  return evaluator.particleJobs(request);
+  return evaluator.particleJobs(startRequest(start, control, 12, *belief, particles, 77, {3, 12}));
 }
 
 TEST(ParticleWorkersTest, WorkersGiveTheInlineResultsBitForBitAndCountTheirWork) {
@@ -122,14 +130,7 @@ TEST(ParticleWorkersTest, MotionEvaluatorGivesTheSameVerdictWithAndWithoutWorker
   const auto belief =
       ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(), start.data());
   const std::vector<double> control = {0.0, 1.0, 0.2};
-  ParticleRequest request;
-  request.start = start.data();
-  request.control = control.data();
-  request.steps = 15;
-  request.poses = belief.get();
-  request.recordAfter = {5, 15};
-  request.particles = 7;
-  request.streamSeed = 1234;
+  const ParticleRequest request = startRequest(start, control, 15, *belief, 7, 1234, {5, 15});
   const ParticleVerdict alone = evaluator.runParticles(request);
   evaluator.useWorkers(3);
   EXPECT_EQ(evaluator.threads(), 3u);
