@@ -124,9 +124,6 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
   const std::vector<ParticleJob> jobs = particleJobs(request);
   physics::World& world = context_.world();
   const physics::ContactParameters mean = world.contactParameters();
-  unsigned validStates = 0;
-  unsigned validInteractions = 0;
-  unsigned inGoal = 0;
   const std::size_t batch = threads();  // more than kParticleBatch processes: keep all busy
   std::size_t ran = 0;
   try {
@@ -134,36 +131,16 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
       const std::size_t end = std::min(jobs.size(), ran + std::max(kParticleBatch, batch));
       std::vector<ParticleResult> results =
           runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
-      for (std::size_t p = ran; p < end; ++p) {
-        ParticleResult& result = results[p - ran];
-        const double* particleStart = jobs[p].start.data();
-        // The pre-grasp pose follows the target: a particle whose target was sampled elsewhere
-        // must reach the goal around it, as an execution in `kautham validate` must.
-        const std::unique_ptr<physics::WorkspaceGoal> moved = context_.goalForStart(particleStart);
-        const physics::WorkspaceGoal& goal = moved ? *moved : context_.goal();
-        const bool interactionOk = displacementWithinLimit(particleStart, result.end.data());
-        validStates += result.valid ? 1 : 0;
-        inGoal += result.valid && interactionOk && goal.reached(result.end.data()) ? 1 : 0;
-        validInteractions += interactionOk ? 1 : 0;
-        std::vector<char> recordedInGoal;
-        std::vector<char> recordedInteractionOk;
-        for (const std::vector<double>& state : result.recorded) {
-          const bool ok = displacementWithinLimit(particleStart, state.data());
-          recordedInteractionOk.push_back(ok);
-          recordedInGoal.push_back(ok && goal.reached(state.data()));
-        }
-        verdict.ends.push_back(std::move(result.end));
-        verdict.endInteractionOk.push_back(interactionOk);
-        verdict.recorded.push_back(std::move(result.recorded));
-        verdict.recordedInGoal.push_back(std::move(recordedInGoal));
-        verdict.recordedInteractionOk.push_back(std::move(recordedInteractionOk));
-      }
+      for (std::size_t p = ran; p < end; ++p)
+        addOutcome(verdict, jobs[p].start.data(), std::move(results[p - ran]));
       ran = end;
       // Every remaining particle valid is the best case; computed as belief() computes, so
       // that equal counts round equally and a pruned candidate could at most tie.
-      const double remaining = static_cast<double>(jobs.size() - ran);
-      const double bound =
-          ((validStates + remaining) / particles) * ((validInteractions + remaining) / particles);
+      const auto bestFraction = [&](const std::vector<char>& flags) {
+        const auto count = std::count(flags.begin(), flags.end(), 1);
+        return static_cast<double>(count + (jobs.size() - ran)) / particles;
+      };
+      const double bound = bestFraction(verdict.endValid) * bestFraction(verdict.endInteractionOk);
       if (ran < jobs.size() && bound <= toBeat) {
         verdict.pruned = true;
         break;
@@ -175,10 +152,32 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
   }
   world.setContactParameters(mean);
   particleCount_ += ran;
-  verdict.stateValidity = static_cast<double>(validStates) / particles;
-  verdict.interaction = static_cast<double>(validInteractions) / particles;
-  verdict.goal = static_cast<double>(inGoal) / particles;
+  verdict.tally();
   return verdict;
+}
+
+void MotionEvaluator::addOutcome(ParticleVerdict& verdict, const double* start,
+                                 ParticleResult&& result) const {
+  // The pre-grasp pose follows the target: a particle whose target was sampled elsewhere must
+  // reach the goal around it, as an execution in `kautham validate` must.
+  const std::unique_ptr<physics::WorkspaceGoal> moved = context_.goalForStart(start);
+  const physics::WorkspaceGoal& goal = moved ? *moved : context_.goal();
+  const auto judge = [&](const std::vector<double>& state, bool valid, auto& interactionOk,
+                         auto& inGoal) {
+    const bool ok = displacementWithinLimit(start, state.data());
+    interactionOk.push_back(ok);
+    inGoal.push_back(valid && ok && goal.reached(state.data()));
+  };
+  judge(result.end, result.valid, verdict.endInteractionOk, verdict.endInGoal);
+  verdict.endValid.push_back(result.valid);
+  std::vector<char> recordedInGoal;
+  std::vector<char> recordedInteractionOk;
+  for (const std::vector<double>& state : result.recorded)
+    judge(state, true, recordedInteractionOk, recordedInGoal);
+  verdict.ends.push_back(std::move(result.end));
+  verdict.recorded.push_back(std::move(result.recorded));
+  verdict.recordedInGoal.push_back(std::move(recordedInGoal));
+  verdict.recordedInteractionOk.push_back(std::move(recordedInteractionOk));
 }
 
 }  // namespace kautham::planners

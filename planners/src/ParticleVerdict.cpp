@@ -1,5 +1,7 @@
 #include "kautham/planners/ParticleVerdict.h"
 
+#include <algorithm>
+
 namespace kautham::planners {
 
 unsigned ParticleVerdict::inGoalAt(std::size_t record) const {
@@ -9,29 +11,31 @@ unsigned ParticleVerdict::inGoalAt(std::size_t record) const {
   return count;
 }
 
+void ParticleVerdict::tally() {
+  if (particles == 0) return;  // the nominal run judged: the fractions were set directly
+  const auto fraction = [this](const std::vector<char>& flags) {
+    return static_cast<double>(std::count(flags.begin(), flags.end(), 1)) / particles;
+  };
+  stateValidity = fraction(endValid);
+  interaction = fraction(endInteractionOk);
+  goal = fraction(endInGoal);
+}
+
 ParticleVerdict ParticleVerdict::cutAt(std::size_t record) const {
   ParticleVerdict cut = *this;
-  unsigned valid = 0;
-  unsigned interactionOk = 0;
   for (std::size_t p = 0; p < recorded.size(); ++p) {
-    if (record < recorded[p].size()) {
-      ++valid;
-      interactionOk += recordedInteractionOk[p][record] ? 1 : 0;
-      cut.ends[p] = recorded[p][record];
-      cut.endInteractionOk[p] = recordedInteractionOk[p][record];
-      cut.recorded[p].resize(record + 1);
-      cut.recordedInGoal[p].resize(record + 1);
-      cut.recordedInteractionOk[p].resize(record + 1);
-    } else {
-      // Invalid before the cut: it ends where it did, judged as it was.
-      interactionOk += endInteractionOk[p] ? 1 : 0;
-    }
+    // A particle without this record was invalid before the cut: it ends where it did,
+    // judged as it was.
+    if (record >= recorded[p].size()) continue;
+    cut.ends[p] = recorded[p][record];
+    cut.endValid[p] = 1;
+    cut.endInteractionOk[p] = recordedInteractionOk[p][record];
+    cut.endInGoal[p] = recordedInGoal[p][record];
+    cut.recorded[p].resize(record + 1);
+    cut.recordedInGoal[p].resize(record + 1);
+    cut.recordedInteractionOk[p].resize(record + 1);
   }
-  if (particles > 0) {
-    cut.stateValidity = static_cast<double>(valid) / particles;
-    cut.interaction = static_cast<double>(interactionOk) / particles;
-    cut.goal = static_cast<double>(inGoalAt(record)) / particles;
-  }
+  cut.tally();
   return cut;
 }
 

@@ -20,7 +20,9 @@ ParticleVerdict fourParticles() {
   const std::vector<double> atB{2.0};
   const std::vector<double> dead{9.0};
   v.ends = {atB, dead, dead, atB};
+  v.endValid = {1, 0, 0, 1};
   v.endInteractionOk = {1, 1, 1, 0};
+  v.endInGoal = {1, 0, 0, 0};
   v.recorded = {{atA, atB}, {atA}, {}, {atA, atB}};
   v.recordedInGoal = {{0, 1}, {0}, {}, {1, 0}};
   v.recordedInteractionOk = {{1, 1}, {1}, {}, {1, 0}};

@@ -105,6 +105,8 @@ class MotionEvaluator {
   /// A nominal run as a job: the mean contact parameters, the exact control, every state kept.
   ParticleJob nominalJob(const double* start, const NominalMotion& motion, bool throughGoal) const;
   NominalRun nominalRun(const double* start, ParticleResult&& result) const;
+  /// Appends a particle's outcome, judged against its own start, to the verdict.
+  void addOutcome(ParticleVerdict& verdict, const double* start, ParticleResult&& result) const;
   std::vector<ParticleResult> runJobs(const std::vector<ParticleJob>& jobs);
 
   physics::PlanningContext& context_;

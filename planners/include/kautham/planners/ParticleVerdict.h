@@ -17,7 +17,9 @@ struct ParticleVerdict {
   bool pruned = false;
 
   std::vector<std::vector<double>> ends;  ///< each particle's final state
+  std::vector<char> endValid;             ///< each particle's states were all valid
   std::vector<char> endInteractionOk;     ///< each particle's objects moved at most d
+  std::vector<char> endInGoal;  ///< each particle ended valid, within d, in its goal region
   /// Per particle: its valid states after the request's recordAfter steps (ParticleResult),
   /// and for each whether it was inside the particle's goal and its objects had moved at most
   /// d by then.
@@ -26,6 +28,8 @@ struct ParticleVerdict {
   std::vector<std::vector<char>> recordedInteractionOk;
 
   double belief() const { return stateValidity * interaction; }
+  /// Sets the three fractions from the particles so far (`particles` is the denominator).
+  void tally();
   /// Particles whose recorded state `record` exists and is in their goal.
   unsigned inGoalAt(std::size_t record) const;
   /// The verdict of the motion cut after the step of record `record`: a particle is valid if
