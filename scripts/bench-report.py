@@ -86,7 +86,9 @@ def wilson(k, n, z=Z95):
     denom = 1 + z * z / n
     center = (p + z * z / (2 * n)) / denom
     half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    return max(0.0, center - half), min(1.0, center + half)
+    low = 0.0 if k <= 0 else max(0.0, center - half)
+    high = 1.0 if k >= n else min(1.0, center + half)
+    return low, high
 
 
 def median(values):
@@ -743,22 +745,6 @@ def parse_args(argv):
 
 def main(argv):
     args = parse_args(argv)
-    plt = None
-    figures_note = ""
-    if not args.no_figures:
-        plt = load_matplotlib()
-        if plt is None:
-            fallback = "/usr/bin/python3"
-            if (os.path.realpath(sys.executable) != os.path.realpath(fallback)
-                    and os.path.exists(fallback) and not os.environ.get("BENCH_REPORT_REEXEC")):
-                print(f"bench-report: {sys.executable} has no matplotlib; running again with "
-                      f"{fallback}", file=sys.stderr)
-                os.environ["BENCH_REPORT_REEXEC"] = "1"
-                os.execv(fallback, [fallback, os.path.abspath(__file__)] + argv)
-            figures_note = ("Figures not drawn: matplotlib is missing (Debian: apt-get install "
-                            "python3-matplotlib, then run with /usr/bin/python3).")
-            print(f"bench-report: {figures_note} Writing the tables only.", file=sys.stderr)
-
     if len(args.inputs) == 1 and os.path.isfile(args.inputs[0]) and is_sqlite(args.inputs[0]):
         db = args.inputs[0]
         outdir = args.output or os.path.join(os.path.dirname(os.path.abspath(db)), "report")
@@ -782,6 +768,22 @@ def main(argv):
 
     runs, _ = read_database(db)
     cells, planners = summarise(runs)
+    plt = None
+    figures_note = ""
+    if not args.no_figures:
+        plt = load_matplotlib()
+        if plt is None:
+            fallback = "/usr/bin/python3"
+            if (os.path.realpath(sys.executable) != os.path.realpath(fallback)
+                    and os.path.exists(fallback) and not os.environ.get("BENCH_REPORT_REEXEC")):
+                print(f"bench-report: {sys.executable} has no matplotlib; running again with "
+                      f"{fallback}", file=sys.stderr)
+                os.environ["BENCH_REPORT_REEXEC"] = "1"
+                os.execv(fallback, [fallback, os.path.abspath(__file__)] + argv)
+            figures_note = ("Figures not drawn: matplotlib is missing (Debian: apt-get install "
+                            "python3-matplotlib, then run with /usr/bin/python3).")
+            print(f"bench-report: {figures_note} Writing the tables only.", file=sys.stderr)
+
     os.makedirs(outdir, exist_ok=True)
     notes = table_notes(cells)
     without_n = sorted({c["problem"] for c in cells if c["objects"] is None})

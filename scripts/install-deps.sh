@@ -11,6 +11,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-three chromium
+  ompl-demos python3-matplotlib sqlite3
 )
 
 missing=()
