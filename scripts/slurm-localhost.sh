@@ -120,7 +120,7 @@ esac
 # Leave the system 5 % of the memory (at least 256 MB): jobs may not ask for all of it.
 realmem=$(sed -n 's/.*RealMemory=\([0-9]*\).*/\1/p' <<<"$node")
 spare=$(( realmem / 20 > 256 ? realmem / 20 : 256 ))
-node=$(sed "s/RealMemory=[0-9]*/RealMemory=$(( realmem - spare ))/" <<<"$node")
+node=${node/RealMemory=$realmem/RealMemory=$((realmem - spare))}
 new=$(cat <<EOF
 $MARK: a one-node cluster on localhost.
 # Rerun that script after a change of the machine; edit by hand at your own risk.
