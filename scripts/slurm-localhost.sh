@@ -13,7 +13,9 @@
 # Idempotent: run it again at any time; it rewrites /etc/slurm/slurm.conf only when the
 # machine's CPUs or memory (from `slurmd -C`) change, and then restarts the daemons.
 # Without systemd (containers) it starts the daemons itself; their logs are in /var/log/slurm/
-# and /var/log/munge/, their pid files in /run/. No cgroups: ProctrackType=proctrack/linuxproc,
+# and /var/log/munge/, their pid files in /run/. With systemd running it uses the Debian units
+# munge, slurmctld and slurmd through systemctl instead (that path is not tested in CI's
+# container, which has no systemd). No cgroups: ProctrackType=proctrack/linuxproc,
 # TaskPlugin=task/none, no accounting database. Not for a shared or production cluster.
 set -euo pipefail
 
@@ -43,7 +45,28 @@ running() {  # pidfile
   [ -f "$1" ] && kill -0 "$(cat "$1")" 2>/dev/null
 }
 
+SYSTEMD=0
+[ -d /run/systemd/system ] && command -v systemctl >/dev/null 2>&1 && SYSTEMD=1
+
+unit() { case $1 in munged) echo munge ;; *) echo "$1" ;; esac; }
+
+start_daemon() {  # name
+  log "starting $1"
+  if [ $SYSTEMD -eq 1 ]; then
+    systemctl enable --now "$(unit "$1")" >/dev/null 2>&1 || systemctl start "$(unit "$1")"
+  elif [ "$1" = munged ]; then
+    runuser -u munge -- /usr/sbin/munged
+  else
+    "/usr/sbin/$1"
+  fi
+}
+
 stop_daemon() {  # name pidfile
+  if [ $SYSTEMD -eq 1 ]; then
+    systemctl is-active --quiet "$(unit "$1")" && log "stopping $1" &&
+      systemctl stop "$(unit "$1")"
+    return 0
+  fi
   if running "$2"; then
     local pid
     pid=$(cat "$2")
@@ -104,8 +127,7 @@ chmod 0400 /etc/munge/munge.key
 install -d -o munge -g munge -m 0755 /run/munge
 install -d -o munge -g munge -m 0700 /var/lib/munge /var/log/munge
 if ! running /run/munge/munged.pid; then
-  log "starting munged"
-  runuser -u munge -- /usr/sbin/munged
+  start_daemon munged
 fi
 for _ in $(seq 50); do munge -n </dev/null 2>/dev/null | unmunge >/dev/null 2>&1 && break; sleep 0.1; done
 munge -n </dev/null | unmunge >/dev/null || { log "munge does not work: see /var/log/munge/munged.log"; exit 1; }
@@ -179,14 +201,12 @@ if [ $changed -eq 1 ]; then
   stop_daemon slurmctld /run/slurmctld.pid
 fi
 if ! running /run/slurmctld.pid; then
-  log "starting slurmctld"
-  /usr/sbin/slurmctld
+  start_daemon slurmctld
 fi
 for _ in $(seq 100); do scontrol ping 2>/dev/null | grep -q UP && break; sleep 0.2; done
 scontrol ping | grep -q UP || { log "slurmctld does not answer: see /var/log/slurm/slurmctld.log"; exit 1; }
 if ! running /run/slurmd.pid; then
-  log "starting slurmd"
-  /usr/sbin/slurmd
+  start_daemon slurmd
 fi
 
 # 5. Wait for the node to be usable; a node left down or drained by an earlier run is resumed.
