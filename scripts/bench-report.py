@@ -816,7 +816,7 @@ def main(argv):
         gaps = [e - x for c in cells if c["planner"] == p for e, x in c["calibration"]]
         if gaps:
             print(f"bench-report: calibration {p}: mean gap (estimated - measured) "
-                  f"{mean(gaps):+.3f} over {len(gaps)} plans")
+                  f"{mean(gaps):+.3f} over {len(gaps)} plan(s)")
     print(f"bench-report: {sum(c['runs'] for c in cells)} runs, {len(cells)} problem x planner "
           f"cells, {len(planners)} planner(s); wrote {len(written)} files to {outdir}/ "
           f"(open {os.path.join(outdir, 'index.html')})")

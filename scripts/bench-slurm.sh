@@ -124,9 +124,16 @@ if [ -e "$out/slurm/jobs.txt" ] && [ $force -eq 0 ] && [ $dryrun -eq 0 ]; then
   die "$out already holds a submitted campaign ($out/slurm/jobs.txt): another -o, or --force"
 fi
 
-# Options common to both jobs
+# Resources as #SBATCH lines, so that a batch script resubmitted by hand gets them too
+directives() {  # cpus time mem
+  [ -n "$partition" ] && echo "#SBATCH --partition=$partition"
+  echo "#SBATCH --cpus-per-task=$1"
+  echo "#SBATCH --time=$2"
+  [ -n "$3" ] && echo "#SBATCH --mem=$3"
+  return 0
+}
+# More options for both jobs, on the command line
 common=()
-[ -n "$partition" ] && common+=(--partition="$partition")
 # shellcheck disable=SC2206 # word splitting wanted: several sbatch options
 [ -n "$sbatchargs" ] && common+=($sbatchargs)
 
@@ -137,6 +144,7 @@ cat >"$out/slurm/shard.sbatch" <<EOF
 # Written by scripts/bench-slurm.sh: one shard of a kautham bench campaign (array task i of $shards).
 #SBATCH --job-name=kautham-bench
 #SBATCH --output=$out/slurm/shard-%A_%a.out
+$(directives "$cpus" "$tasktime" "$mem")
 set -uo pipefail
 i=\${SLURM_ARRAY_TASK_ID:?run as a Slurm array task: sbatch --array=1-$shards $out/slurm/shard.sbatch}
 echo "kautham bench shard \$i/$shards on \$(hostname), job \${SLURM_JOB_ID:-?}, \${SLURM_CPUS_PER_TASK:-?} CPUs, started \$(date -Is)"
@@ -161,6 +169,8 @@ for ((i = 1; i <= shards; i++)); do shard_dirs+=" $(q "$out/shard-$i")"; done
 # Written by scripts/bench-slurm.sh: $what.
 #SBATCH --job-name=kautham-bench-merge
 #SBATCH --output=$out/slurm/merge-%j.out
+$(directives 1 "$mergetime" "")
+#SBATCH --kill-on-invalid-dep=yes
 set -euo pipefail
 echo "merging on \$(hostname), started \$(date -Is)"
 shards=()
@@ -183,12 +193,8 @@ EOF
 chmod +x "$out/slurm/shard.sbatch" "$out/slurm/merge.sbatch"
 
 array="1-$shards${maxrunning:+%$maxrunning}"
-shard_cmd=("$SBATCH" --parsable "${common[@]}" --array="$array" --cpus-per-task="$cpus"
-           --time="$tasktime")
-[ -n "$mem" ] && shard_cmd+=(--mem="$mem")
-shard_cmd+=("$out/slurm/shard.sbatch")
-merge_cmd=("$SBATCH" --parsable "${common[@]}" --cpus-per-task=1 --time="$mergetime"
-           --kill-on-invalid-dep=yes)
+shard_cmd=("$SBATCH" --parsable "${common[@]}" --array="$array" "$out/slurm/shard.sbatch")
+merge_cmd=("$SBATCH" --parsable "${common[@]}")
 
 if [ $dryrun -eq 1 ]; then
   echo "bench-slurm: dry run; wrote $out/slurm/shard.sbatch and $out/slurm/merge.sbatch; would run:"

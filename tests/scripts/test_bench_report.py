@@ -128,7 +128,7 @@ class FromLogs(unittest.TestCase):
         self.assertIn("<td>kuka_clutter_10</td><td>pKPU</td>", page)
         self.assertIn("time limit", page)
         # printed over all problems: (0.1 + 6 * 0.05) / 12 with yumi_clutter_5's plans
-        self.assertIn("calibration pKPU: mean gap (estimated - measured) +0.033 over 12 plans",
+        self.assertIn("calibration pKPU: mean gap (estimated - measured) +0.033 over 12 plan(s)",
                       self.result.stdout)
 
 
