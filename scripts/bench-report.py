@@ -229,6 +229,10 @@ def read_database(db):
     columns = {r[1] for r in conn.execute("PRAGMA table_info(runs)")}
     if "solved" not in columns and "status" not in columns:
         raise BadInput(f"{db}: the runs have neither a 'solved' nor a 'status' property")
+    status_names = {}
+    if "enums" in tables:
+        status_names = {int(v): d for v, d in conn.execute(
+            "SELECT value, description FROM enums WHERE name='status'")}
     exact_status = None
     if "solved" not in columns:
         row = conn.execute("SELECT value FROM enums WHERE name='status' AND "
@@ -250,7 +254,10 @@ def read_database(db):
             success = _num(solved) == 1 and _num(approx) != 1
         else:
             success = _num(status) == exact_status
-        runs.append({"problem": problem, "planner": planner_name(planner),
+        code = _num(status)
+        runs.append({"status": status_names.get(int(code), str(int(code)))
+                     if code is not None else None,
+                     "problem": problem, "planner": planner_name(planner),
                      "timelimit": _num(limit), "success": success, "time": _num(time),
                      "execution": _num(execution), "estimated": _num(estimated),
                      "objects_moved": _num(moved)})
@@ -305,12 +312,15 @@ def summarise(runs):
         calibration = [(r["estimated"], r["execution"]) for r in rs
                        if r["success"] and r["estimated"] is not None
                        and r["execution"] is not None]
+        # runs that ended neither with a solution nor by the time limit (crashed, aborted, ...)
+        failed = sum(1 for r in rs if not r["success"] and r["status"] is not None
+                     and r["status"] not in ("Timeout", "Approximate solution"))
         ci = wilson(k, n)
         mi = median_interval(times)
         ei = median_interval(execution)
         cells.append({
             "problem": problem, "family": family, "objects": n_objects, "planner": planner,
-            "runs": n, "solved": k, "success_rate": k / n if n else None,
+            "runs": n, "solved": k, "failed": failed, "success_rate": k / n if n else None,
             "success_wilson95": list(ci) if ci else None,
             "time_limit": limit,
             "time_median": median(times), "time_median_interval": list(mi[:2]) if mi else None,
@@ -356,6 +366,9 @@ def table_rows(cells, with_paper):
     header = ["problem", "planner", "runs", "solved %", "95 % Wilson", "median time s",
               "[95 % interval]", "mean time s", "mean time solved s", "exec. median %",
               "exec. mean %"]
+    with_failed = any(c["failed"] for c in cells)
+    if with_failed:
+        header.insert(3, "failed")
     if with_paper:
         header.append("paper (solved %, mean s)")
     rows = []
@@ -369,6 +382,8 @@ def table_rows(cells, with_paper):
                f"[{secs(mi[0])}, {secs(mi[1])}]" if mi else "—",
                secs(c["time_mean"]), secs(c["time_mean_solved"]),
                pct(c["execution_median"], 1), pct(c["execution_mean"], 1)]
+        if with_failed:
+            row.insert(3, str(c["failed"]))
         if with_paper:
             p = paper_value(c["planner"], c["objects"]) if c["objects"] is not None else None
             row.append(f"{p[0]}, {p[1]:.2f}" if p else "")
@@ -400,6 +415,9 @@ def table_notes(cells):
         "that succeeded, a run whose planning failed counting 0 %; solved runs without "
         "validation are left out; \"—\" where no plan was validated.",
     ]
+    if any(c["failed"] for c in cells):
+        notes.insert(1, "Failed: runs that ended neither with a solution nor by the time limit "
+                     "(OMPL status Crash, ...); they count as not solved, at the time limit.")
     return notes
 
 

@@ -35,10 +35,12 @@
 # Environment: KAUTHAM (default: build/apps/kautham of this repository), PYTHON for the report
 # (default /usr/bin/python3: Debian's, with matplotlib), SBATCH (default sbatch).
 # Relative paths in the bench arguments (--file bench.json, problem files) are resolved in the
-# directory sbatch is run from, where the jobs start. kautham bench's exit codes 0 (all solved)
-# and 1 (ran, not all solved) count as a task that ended well; 2 or more fail it, and then the
-# merge job is cancelled (--kill-on-invalid-dep=yes): look at OUT/slurm/*.out, rerun the shard
-# by hand (`sbatch --array=i OUT/slurm/shard.sbatch`) and the merge (`sbatch OUT/slurm/merge.sbatch`).
+# directory sbatch is run from, where the jobs start. kautham bench's exit codes 0 (every run
+# finished, solved or not) and 1 (some run crashed or failed: the logs record it) count as a
+# task that ended well; 2 (bad input), 130 (interrupted), a kill or Slurm's time limit fail it,
+# and then the merge job is cancelled (--kill-on-invalid-dep=yes): look at OUT/slurm/*.out,
+# resubmit the shard by hand (`sbatch --array=i OUT/slurm/shard.sbatch`), then the merge
+# (`sbatch --dependency=afterok:JOBID OUT/slurm/merge.sbatch`).
 #
 # Example (4 shards of 2 CPUs; 30 runs of every planner on every problem of bench.json):
 #   scripts/bench-slurm.sh -n 4 -c 2 -t 06:00:00 -o /shared/campaign1 -- \
@@ -153,7 +155,8 @@ $(q "$KAUTHAM" bench "${bench[@]}")--shard "\$i/$shards" -o "$out/shard-\$i"
 rc=\$?
 set +x
 echo "kautham bench exit code \$rc, ended \$(date -Is)"
-# kautham: 0 all solved, 1 ran but not all solved, 2 bad input; more: crashed or killed.
+# kautham bench: 0 every run finished, 1 some run crashed or failed (in the logs), 2 bad input,
+# 130 interrupted; more: killed.
 if [ \$rc -gt 1 ]; then exit \$rc; fi
 ls "$out/shard-\$i"/logs/*.log >/dev/null 2>&1 || echo "warning: no log in $out/shard-\$i/logs"
 exit 0

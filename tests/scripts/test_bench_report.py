@@ -11,8 +11,11 @@ kuka_clutter_10, pKPU (time limit 30 s): 10 runs, 7 exact solutions, 1 approxima
   median [x(2), x(9)] = [3, 30] (coverage 1 - 2 * 11/1024), mean 14.55, mean of solved 55.5/7;
   execution: 6 validated plans (0.85 0.7 0.9 0.5 1 0.65; one solved run not validated) and 3
   unsolved runs at 0 -> median 0.65, mean 4.6/9; calibration gap mean (0.1 / 6).
-yumi_clutter_5, pKPU: two shard logs of 3 runs each, pooled: 6/6.
-pusher_free, RRT: no object count in the name, OMPL's properties only: 3/4, no execution.
+yumi_clutter_5, pKPU: two shard logs of 3 runs each, one naming it control_pKPU as OMPL's
+  Benchmark does, one pKPU: pooled, 6/6.
+pusher_free, RRT (limit 10 s): no object count in the name, OMPL's properties only; 3 solved,
+  1 timeout, 1 crash (status 7, counted as failed and not solved): 3/5, Wilson [0.2307, 0.8824],
+  times 0.5 0.7 0.9 10 10 -> median 0.9, mean 4.42; no execution success.
 
 Run: /usr/bin/python3 tests/scripts/test_bench_report.py (CTest: bench_report).
 """
@@ -64,7 +67,7 @@ class FromLogs(unittest.TestCase):
         conn = sqlite3.connect(db)
         tables = {r[0] for r in conn.execute("SELECT name FROM sqlite_master WHERE type='table'")}
         self.assertTrue({"experiments", "plannerConfigs", "enums", "runs", "progress"} <= tables)
-        self.assertEqual(conn.execute("SELECT count(*) FROM runs").fetchone()[0], 25)
+        self.assertEqual(conn.execute("SELECT count(*) FROM runs").fetchone()[0], 26)
         self.assertEqual(conn.execute("SELECT count(*) FROM experiments").fetchone()[0], 4)
         columns = {r[1] for r in conn.execute("PRAGMA table_info(runs)")}
         self.assertTrue({"estimated_success", "execution_success", "objects_moved"} <= columns)
@@ -103,18 +106,23 @@ class FromLogs(unittest.TestCase):
         y = self.cells[("yumi_clutter_5", "pKPU")]
         self.assertEqual((y["runs"], y["solved"], y["objects"]), (6, 6, 5))
         p = self.cells[("pusher_free", "RRT")]
-        self.assertEqual((p["runs"], p["solved"], p["objects"]), (4, 3, None))
+        self.assertEqual((p["runs"], p["solved"], p["failed"], p["objects"]), (5, 3, 1, None))
         self.assertIsNone(p["execution_median"])
         self.assertEqual(p["time_limit"], 10)
+        self.assertAlmostEqual(p["time_median"], 0.9)
+        self.assertAlmostEqual(p["time_mean"], 4.42)  # the crash at the limit too
+        lo, hi = p["success_wilson95"]
+        self.assertAlmostEqual(lo, 0.2307, places=4)
+        self.assertAlmostEqual(hi, 0.8824, places=4)
 
     def test_markdown_table(self):
         with open(os.path.join(self.out, "table.md")) as f:
             text = f.read()
-        self.assertIn("| kuka_clutter_10 | pKPU | 10 | 70.0 | [39.7, 89.2] | 10.00 | "
+        self.assertIn("| kuka_clutter_10 | pKPU | 10 | 0 | 70.0 | [39.7, 89.2] | 10.00 | "
                       "[3.00, 30.00] | 14.55 | 7.93 | 65.0 | 51.1 | 100, 14.52 |", text)
-        self.assertIn("| kuka_clutter_10 | KPIECE | 5 | 40.0 | [11.8, 76.9] | 30.00 | "
+        self.assertIn("| kuka_clutter_10 | KPIECE | 5 | 0 | 40.0 | [11.8, 76.9] | 30.00 | "
                       "[11.00, 30.00] | 25.20 | 18.00 | 0.0 | 8.0 |  |", text)
-        self.assertIn("| pusher_free | RRT | 4 | 75.0 | [30.1, 95.4] |", text)
+        self.assertIn("| pusher_free | RRT | 5 | 1 | 60.0 | [23.1, 88.2] | 0.90 |", text)
         self.assertIn("| 40 | 40 | 182.19 | 60 | 71.64 | 63 | 68 | — | — |", text)  # Table I
 
     def test_figures_and_index(self):
