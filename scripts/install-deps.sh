@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages this project builds and tests with.
+# Installs the Debian 12 packages this project builds and tests with (ompl-demos, with
+# python3-matplotlib, and sqlite3: `kautham bench` logs become a Planner Arena database).
 # Idempotent: when every package is present it only checks and returns (well under a second).
 set -euo pipefail
 
@@ -11,6 +12,7 @@ PACKAGES=(
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-three chromium
+  ompl-demos python3-matplotlib sqlite3
 )
 
 missing=()
