@@ -28,7 +28,9 @@ constexpr int kExitInterrupted = 130;  // the shell's code for a command ended b
 
 struct BenchOptions {
   BenchArguments spec;
-  std::vector<std::string> inputs;  ///< problems, or with --merge-only result folders
+  std::vector<std::string> planners;  ///< --planner NAME
+  std::vector<std::string> configs;   ///< --config NAME=PLANNER[:PARAM=VALUE]...
+  std::vector<std::string> inputs;    ///< problems, or with --merge-only result folders
   std::string file;
   std::string output = "out/bench";
   std::size_t jobs = 1;
@@ -95,8 +97,9 @@ void writeLogs(const std::vector<json>& results, const BenchLayout& layout) {
 
 int runMergeOnly(const BenchOptions& options) {
   const BenchArguments& s = options.spec;
-  if (!options.file.empty() || !s.planners.empty() || !s.configs.empty() || !s.sets.empty() ||
-      s.runs || s.seed || s.time || s.threads || s.validate || options.shard != "1/1")
+  if (!options.file.empty() || !options.planners.empty() || !options.configs.empty() ||
+      !s.sets.empty() || s.runs || s.seed || s.time || s.threads || s.validate ||
+      options.shard != "1/1")
     throw std::invalid_argument("--merge-only runs nothing: it takes -o OUT and result folders");
   std::vector<fs::path> folders{options.output};
   std::set<fs::path> distinct;
@@ -123,8 +126,24 @@ void printPlan(const BenchSpec& spec, const Shard& shard, std::size_t jobs) {
              shard.count > 1 ? fmt::format(" (shard {}/{})", shard.index, shard.count) : "", jobs);
 }
 
-int runBench(BenchOptions options) {
+/// --planner and --config in the order they were given: the order of the log's planners.
+std::vector<BenchConfig> configsInOrder(const CLI::App& command, const BenchOptions& options) {
+  std::vector<BenchConfig> configs;
+  std::size_t planner = 0, config = 0;
+  for (const CLI::Option* option : command.parse_order()) {
+    if (option->check_lname("planner")) {
+      const std::string& name = options.planners.at(planner++);
+      configs.push_back({name, name, {}});
+    } else if (option->check_lname("config")) {
+      configs.push_back(parseConfig(options.configs.at(config++)));
+    }
+  }
+  return configs;
+}
+
+int runBench(const CLI::App& command, BenchOptions options) {
   if (options.mergeOnly) return runMergeOnly(options);
+  options.spec.configs = configsInOrder(command, options);
   if (!options.file.empty()) options.spec.file = options.file;
   options.spec.problems = options.inputs;
   const BenchSpec spec = makeBenchSpec(options.spec);
@@ -154,10 +173,10 @@ void addSpecOptions(CLI::App& command, BenchOptions& options) {
   command.add_option("--file", options.file,
                      "benchmark file (JSON): name, problems, configs, runs, seed, time, threads, "
                      "validate; the options below override it");
-  command.add_option("--planner", s.planners, "a planner to run, shown under its own name")
+  command.add_option("--planner", options.planners, "a planner to run, shown under its own name")
       ->allow_extra_args(false);
   command
-      .add_option("--config", s.configs,
+      .add_option("--config", options.configs,
                   "a named configuration NAME=PLANNER[:PARAM=VALUE]..., e.g. "
                   "\"pKP=p-KPIECE:uncertainty=0\"")
       ->allow_extra_args(false);
@@ -203,8 +222,9 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       "Example: kautham bench problems/pusher_free.xml --planner KPIECE --planner RRT --runs 5 \\\n"
       "           --time 10 -o out/bench\n"
       "         ompl_benchmark_statistics out/bench/logs/*.log -d out/bench/bench.db");
-  command->callback(
-      [options, &exitCode] { exitCode = runReportingErrors([&] { return runBench(*options); }); });
+  command->callback([command, options, &exitCode] {
+    exitCode = runReportingErrors([&] { return runBench(*command, *options); });
+  });
 }
 
 }  // namespace kautham::apps

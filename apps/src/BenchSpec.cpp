@@ -193,12 +193,7 @@ BenchSpec makeBenchSpec(const BenchArguments& arguments) {
   BenchSpec spec = arguments.file ? BenchFileReader(*arguments.file).read() : BenchSpec{};
   if (!arguments.problems.empty())
     spec.problems.assign(arguments.problems.begin(), arguments.problems.end());
-  if (!arguments.planners.empty() || !arguments.configs.empty()) {
-    spec.configs.clear();
-    for (const std::string& planner : arguments.planners)
-      spec.configs.push_back({planner, planner, {}});
-    for (const std::string& config : arguments.configs) spec.configs.push_back(parseConfig(config));
-  }
+  if (!arguments.configs.empty()) spec.configs = arguments.configs;
   // --set applies to every configuration, before the configuration's own overrides.
   for (BenchConfig& c : spec.configs)
     c.sets.insert(c.sets.begin(), arguments.sets.begin(), arguments.sets.end());

@@ -36,9 +36,8 @@ struct BenchSpec {
 struct BenchArguments {
   std::optional<std::filesystem::path> file;
   std::vector<std::string> problems;
-  std::vector<std::string> planners;  ///< --planner NAME: a configuration named after it
-  std::vector<std::string> configs;   ///< --config NAME=PLANNER[:PARAM=VALUE]...
-  std::vector<std::string> sets;      ///< --set PARAM=VALUE for every configuration
+  std::vector<BenchConfig> configs;  ///< --planner and --config, in command-line order
+  std::vector<std::string> sets;     ///< --set PARAM=VALUE for every configuration
   std::optional<std::size_t> runs;
   std::optional<std::uint32_t> seed;
   std::optional<double> time;
