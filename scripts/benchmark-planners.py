@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Benchmarks the KPIECE family on the generated clutter scenes and writes docs/benchmarks.md.
 
-For every problem kuka_cans_N (N from --objects) and every planner configuration, runs
-`kautham plan` for each seed with a time limit (60 s by default, as the paper's comparison
-needs), one run at a time, and records whether it solved and how long it took. With
+For every problem kuka_cans_N (N from --objects) and every planner configuration, plans once
+per seed with a time limit (60 s by default, as the paper's comparison needs), one run at a
+time, through `kautham bench` (each run in its own process; a run whose result is in --keep
+is not run again), and records whether it solved and how long it took. With
 --validate R, each solved p-KPIECE and o-KPIECE plan of the --validate-problem scene is also
 run R times under the problem's uncertainty (`kautham validate`), and the success rates go in
 a second table. The paper's Table I (i7-4500U, 30 runs per scene) is printed beside ours.
 
-Usage: scripts/benchmark-planners.py [--objects 5 10 20 30 40] [--seeds 1 2 3 4 5]
+Usage: scripts/benchmark-planners.py [--objects 5 10 20 30 40] [--seeds 1 2 3 4 5 (consecutive)]
            [--time 60] [--threads 1] [--validate 100] [--validate-problem kuka_cans_10]
            [--keep DIR] [-o docs/benchmarks.md]
 Needs build/apps/kautham (scripts/build.sh) or $KAUTHAM; standard library only.
@@ -19,18 +20,19 @@ import datetime
 import json
 import os
 import statistics
+import subprocess
 import sys
 import tempfile
 
 import kautham_runs
 from kautham_runs import KAUTHAM, ROOT, run
 
-# name in the table -> planner and its --set overrides
+# name in the table -> `kautham bench --config` (NAME=PLANNER[:PARAM=VALUE]...)
 PLANNERS = [
-    ("p-KPIECE, uncertainty", "p-KPIECE", ["uncertainty=1"]),
-    ("p-KPIECE, none", "p-KPIECE", ["uncertainty=0"]),
-    ("o-KPIECE", "o-KPIECE", []),
-    ("KPIECE", "KPIECE", []),
+    ("p-KPIECE, uncertainty", "pKPU=p-KPIECE:uncertainty=1"),
+    ("p-KPIECE, none", "pKP=p-KPIECE:uncertainty=0"),
+    ("o-KPIECE", "o-KPIECE=o-KPIECE"),
+    ("KPIECE", "KPIECE=KPIECE"),
 ]
 
 # The paper's Table I: objects -> (pKP success %, pKP time s, pKPU success %, pKPU time s).
@@ -39,19 +41,29 @@ PAPER = {5: (100, 2.89, 100, 9.88), 10: (100, 5.96, 100, 14.52), 15: (100, 9.15,
          35: (73, 49.62, 53, 134.94), 40: (60, 71.64, 40, 182.19)}
 
 
-def plan(problem, planner, sets, seed, limit, threads, out):
-    command = [KAUTHAM, "plan", problem, "--planner", planner, "--seed", str(seed), "--time",
-               str(limit), "-o", out]
-    if threads > 1:
-        command += ["--threads", str(threads)]
-    for s in sets:
-        command += ["--set", s]
-    result = run(command)
-    if result.returncode not in (0, 1) or not os.path.exists(out):
-        sys.exit(f"benchmark: {' '.join(command)} failed:\n{result.stderr}")
-    with open(out) as f:
+def bench(args, keep):
+    """`kautham bench` of every scene and configuration: run r plans with seed seeds[0] + r."""
+    seeds = args.seeds
+    if seeds != list(range(seeds[0], seeds[0] + len(seeds))):
+        sys.exit("benchmark: --seeds must be consecutive (kautham bench plans seed, seed + 1, ...)")
+    command = [KAUTHAM, "bench", *[f"problems/kuka_cans_{n}.xml" for n in args.objects],
+               "--runs", str(len(seeds)), "--seed", str(seeds[0]), "--time", str(args.time),
+               "--threads", str(args.threads), "-o", keep]
+    for _, config in PLANNERS:
+        command += ["--config", config]
+    # Its progress line and summary go to the terminal; exit 1 means some run crashed, and a
+    # crashed run counts as not solved below.
+    if subprocess.run(command, cwd=ROOT).returncode not in (0, 1):
+        sys.exit(f"benchmark: {' '.join(command)} failed")
+
+
+def result(keep, n, config, seed_index):
+    """(solved, planning time, plan file or None) of one run, from its bench result file."""
+    name = config.split("=")[0]
+    with open(os.path.join(keep, "runs", f"kuka_cans_{n}", name, f"run-{seed_index}.json")) as f:
         data = json.load(f)
-    return data["result"]["solved"], data["timing"]["planning_time"]
+    plan_file = os.path.join(keep, data["plan"]["file"]) if data["solved"] else None
+    return data["solved"], float(data["properties"]["time REAL"]), plan_file
 
 
 def validate(problem, planFile, runs, seed):
@@ -67,24 +79,24 @@ def main():
     parser.add_argument("--threads", type=int, default=1)
     parser.add_argument("--validate", type=int, default=0, metavar="RUNS")
     parser.add_argument("--validate-problem", default="kuka_cans_10")
-    parser.add_argument("--keep", help="folder for the plan files (default: a temporary one)")
+    parser.add_argument("--keep", help="kautham bench's output folder: results, plans, OMPL logs "
+                        "(default: a temporary one)")
     parser.add_argument("-o", "--output", default=os.path.join(ROOT, "docs", "benchmarks.md"))
     args = parser.parse_args()
     keep = args.keep or tempfile.mkdtemp(prefix="kautham-bench-")
     os.makedirs(keep, exist_ok=True)
 
+    bench(args, keep)
     results = {}  # (objects, name) -> list of (solved, time)
     plans = {}    # (name, seed) -> plan file of the validated scene
     for n in args.objects:
-        problem = f"problems/kuka_cans_{n}.xml"
-        for name, planner, sets in PLANNERS:
-            for seed in args.seeds:
-                out = os.path.join(keep, f"kuka_cans_{n}_{planner}_{'_'.join(sets)}_s{seed}.json")
-                solved, seconds = plan(problem, planner, sets, seed, args.time, args.threads, out)
+        for name, config in PLANNERS:
+            for index, seed in enumerate(args.seeds):
+                solved, seconds, plan_file = result(keep, n, config, index)
                 results.setdefault((n, name), []).append((solved, seconds))
                 if f"kuka_cans_{n}" == args.validate_problem:
-                    plans[(name, seed)] = out if solved else None
-                print(f"{problem} {name:24} seed {seed}: "
+                    plans[(name, seed)] = plan_file
+                print(f"kuka_cans_{n} {name:24} seed {seed}: "
                       f"{'solved' if solved else 'not solved'} in {seconds:.1f} s", flush=True)
 
     rates = {}
@@ -113,18 +125,18 @@ def write(args, results, rates):
         "# Benchmarks: the KPIECE family on kuka_cans_N",
         "",
         f"Made by `scripts/benchmark-planners.py` on {datetime.date.today()} (commit {commit}): "
-        f"`kautham plan` on `problems/kuka_cans_N.xml`, seeds {' '.join(map(str, args.seeds))}, "
+        f"`kautham bench` on `problems/kuka_cans_N.xml`, seeds {' '.join(map(str, args.seeds))}, "
         f"time limit {args.time:g} s, {args.threads} thread(s), one run at a time on a machine "
         "with 2 cores. Each cell: success rate / median planning time of the solved runs (s). "
         "Rerun it with the same command to check; add `--objects 5 10 15 20 25 30 35 40` or more "
         "`--seeds` where time allows.",
         "",
-        "| objects | " + " | ".join(name for name, _, _ in PLANNERS) +
+        "| objects | " + " | ".join(name for name, _ in PLANNERS) +
         " | paper pKP | paper pKPU |",
         "| --- | " + " | ".join("---" for _ in PLANNERS) + " | --- | --- |",
     ]
     for n in args.objects:
-        row = [cell(results[(n, name)]) for name, _, _ in PLANNERS]
+        row = [cell(results[(n, name)]) for name, _ in PLANNERS]
         paper = PAPER.get(n)
         extra = [f"{paper[0]} % / {paper[1]}", f"{paper[2]} % / {paper[3]}"] if paper else ["", ""]
         lines.append(f"| {n} | " + " | ".join(row + extra) + " |")

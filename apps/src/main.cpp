@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   kautham::apps::addGenerateCommand(app, exitCode);
   kautham::apps::addViewCommand(app, exitCode);
   kautham::apps::addValidateCommand(app, exitCode);
+  kautham::apps::addBenchCommand(app, exitCode);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {

@@ -1,0 +1,230 @@
+// `kautham bench`: problems x planner configurations x runs, each run in child processes of
+// this program, one result file per run, OMPL benchmark logs per problem. The parts:
+// BenchSpec (what to run), BenchPreflight (bad input before any run), BenchRunner (children,
+// jobs, resume, Ctrl-C), BenchRunResult and RunProperties (the result file), OmplBenchmarkLog.
+
+#include <map>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "BenchLayout.h"
+#include "BenchPreflight.h"
+#include "BenchRunResult.h"
+#include "BenchRunner.h"
+#include "BenchSpec.h"
+#include "Commands.h"
+#include "OmplBenchmarkLog.h"
+#include "kautham/core/InputError.h"
+
+namespace kautham::apps {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr int kExitInterrupted = 130;  // the shell's code for a command ended by Ctrl-C
+
+struct BenchOptions {
+  BenchArguments spec;
+  std::vector<std::string> planners;  ///< --planner NAME
+  std::vector<std::string> configs;   ///< --config NAME=PLANNER[:PARAM=VALUE]...
+  std::vector<std::string> inputs;    ///< problems, or with --merge-only result folders
+  std::string file;
+  std::string output = "out/bench";
+  std::size_t jobs = 1;
+  std::string shard = "1/1";
+  bool mergeOnly = false;
+};
+
+/// The results in OUT that belong to the spec's runs, made with its setup.
+std::vector<json> resultsOfSpec(const BenchSpec& spec, const Preflight& checked,
+                                const BenchLayout& layout) {
+  std::map<std::string, json> expected;
+  for (const RunKey& key : allRuns(spec))
+    expected[fmt::format("{}/{}/{}", problemName(spec.problems[key.problem]),
+                         spec.configs[key.config].name, key.run)] =
+        runSetup(spec, key, checked.timeLimits[key.problem][key.config]);
+  std::vector<json> results;
+  for (json& r : readRunResults(layout)) {
+    const auto it = expected.find(runIdentity(r));
+    if (it != expected.end() && r["setup"] == it->second) results.push_back(std::move(r));
+  }
+  return results;
+}
+
+/// Results of several folders, each run once: the first folder that has it wins.
+std::vector<json> mergedResults(const std::vector<fs::path>& folders) {
+  std::map<std::string, fs::path> seen;
+  std::vector<json> results;
+  for (const fs::path& folder : folders) {
+    if (!fs::is_directory(BenchLayout(folder).runsFolder()))
+      throw core::InputError({folder, 0}, "no runs/ folder of `kautham bench` results here");
+    for (json& r : readRunResults(BenchLayout(folder))) {
+      const auto [it, added] = seen.emplace(runIdentity(r), folder);
+      if (added)
+        results.push_back(std::move(r));
+      else
+        fmt::print(stderr, "warning: run {} is in {} and {}; kept the first\n", it->first,
+                   it->second.string(), folder.string());
+    }
+  }
+  return results;
+}
+
+/// "Crash: plan killed by signal 9 (Killed)" or "Exact solution: validate exit code 1".
+std::string whyFailed(const json& result) {
+  const json& validation = result.at("validation");
+  const bool planEnded = result.at("plan").value("exit", "") == "exit code 0" ||
+                         result.at("plan").value("exit", "") == "exit code 1";
+  if (planEnded && validation.is_object())
+    return result.value("status", "") + ": validate " + validation.value("exit", "");
+  return result.value("status", "") + ": plan " + result.at("plan").value("exit", "");
+}
+
+/// Writes the logs and prints the runs that failed.
+void writeLogs(const std::vector<json>& results, const BenchLayout& layout) {
+  std::size_t failed = 0;
+  for (const json& r : results)
+    if (r.value("failed", false) && ++failed <= 10)
+      fmt::print("failed    {}: {}; see {}\n", runIdentity(r), whyFailed(r),
+                 (layout.root() / r.value("console", "")).string());
+  if (failed > 10) fmt::print("failed    ... {} runs in all\n", failed);
+  for (const fs::path& log : writeOmplBenchmarkLogs(results, layout.logsFolder()))
+    fmt::print("wrote     {}\n", log.string());
+}
+
+int runMergeOnly(const BenchOptions& options) {
+  const BenchArguments& s = options.spec;
+  if (!options.file.empty() || !options.planners.empty() || !options.configs.empty() ||
+      !s.sets.empty() || s.runs || s.seed || s.time || s.threads || s.validate ||
+      options.shard != "1/1")
+    throw std::invalid_argument("--merge-only runs nothing: it takes -o OUT and result folders");
+  std::vector<fs::path> folders{options.output};
+  std::set<fs::path> distinct;
+  if (fs::exists(options.output)) distinct.insert(fs::weakly_canonical(options.output));
+  for (const std::string& input : options.inputs)
+    if (distinct.insert(fs::weakly_canonical(input)).second) folders.push_back(input);
+  if (!fs::is_directory(BenchLayout(options.output).runsFolder())) folders.erase(folders.begin());
+  if (folders.empty())
+    throw std::invalid_argument("--merge-only: no folder with results (give OUT or DIR...)");
+  const std::vector<json> results = mergedResults(folders);
+  if (results.empty()) throw std::invalid_argument("--merge-only: the folders hold no results");
+  std::size_t solved = 0;
+  for (const json& r : results) solved += r.value("solved", false);
+  fmt::print("merged    {} runs from {} folders; {} solved\n", results.size(), folders.size(),
+             solved);
+  writeLogs(results, BenchLayout(options.output));
+  return kExitSolved;
+}
+
+void printPlan(const BenchSpec& spec, const Shard& shard, std::size_t jobs) {
+  const std::size_t all = spec.problems.size() * spec.configs.size() * spec.runs;
+  fmt::print("bench     {} problems x {} configurations x {} runs = {} runs{}, {} at a time\n",
+             spec.problems.size(), spec.configs.size(), spec.runs, all,
+             shard.count > 1 ? fmt::format(" (shard {}/{})", shard.index, shard.count) : "", jobs);
+}
+
+/// --planner and --config in the order they were given: the order of the log's planners.
+std::vector<BenchConfig> configsInOrder(const CLI::App& command, const BenchOptions& options) {
+  std::vector<BenchConfig> configs;
+  std::size_t planner = 0, config = 0;
+  for (const CLI::Option* option : command.parse_order()) {
+    if (option->check_lname("planner")) {
+      const std::string& name = options.planners.at(planner++);
+      configs.push_back({name, name, {}});
+    } else if (option->check_lname("config")) {
+      configs.push_back(parseConfig(options.configs.at(config++)));
+    }
+  }
+  return configs;
+}
+
+int runBench(const CLI::App& command, BenchOptions options) {
+  if (options.mergeOnly) return runMergeOnly(options);
+  options.spec.configs = configsInOrder(command, options);
+  if (!options.file.empty()) options.spec.file = options.file;
+  options.spec.problems = options.inputs;
+  const BenchSpec spec = makeBenchSpec(options.spec);
+  const Shard shard = parseShard(options.shard);
+  const Preflight checked = preflight(spec);  // bad input stops here, before any run
+  printPlan(spec, shard, options.jobs);
+
+  const BenchRunOptions run{options.output, options.jobs, shard,
+                            fs::read_symlink("/proc/self/exe")};
+  const BenchSummary summary = runBenchmark(spec, checked, run);
+  if (summary.interrupted) {
+    fmt::print(
+        "interrupted: {} of {} runs done ({} solved, {} failed); the same command "
+        "resumes\n",
+        summary.done, summary.total, summary.solved, summary.failed);
+    return kExitInterrupted;
+  }
+  fmt::print("runs      {}: {} made now, {} resumed; {} solved, {} failed\n", summary.total,
+             summary.done - summary.resumed, summary.resumed, summary.solved, summary.failed);
+  const BenchLayout layout(options.output);
+  writeLogs(resultsOfSpec(spec, checked, layout), layout);
+  return summary.failed > 0 ? kExitNotSolved : kExitSolved;
+}
+
+void addSpecOptions(CLI::App& command, BenchOptions& options) {
+  BenchArguments& s = options.spec;
+  command.add_option("--file", options.file,
+                     "benchmark file (JSON): name, problems, configs, runs, seed, time, threads, "
+                     "validate; the options below override it");
+  command.add_option("--planner", options.planners, "a planner to run, shown under its own name")
+      ->allow_extra_args(false);
+  command
+      .add_option("--config", options.configs,
+                  "a named configuration NAME=PLANNER[:PARAM=VALUE]..., e.g. "
+                  "\"pKP=p-KPIECE:uncertainty=0\"")
+      ->allow_extra_args(false);
+  command.add_option("--set", s.sets, "PARAM=VALUE for every configuration (repeatable)")
+      ->allow_extra_args(false);
+  command.add_option("--runs", s.runs, "runs per problem and configuration (default 10)");
+  command.add_option("--seed", s.seed, "run r plans and validates with seed SEED + r (default 1)");
+  command.add_option("--time", s.time, "planning time limit in seconds (default: the problem's)");
+  command.add_option("--threads", s.threads, "processes for p-KPIECE's particles in each run");
+  command.add_option("--validate", s.validate,
+                     "execute each solved plan this many times under uncertainty (default 0)");
+  command.add_option("--model-dir", s.modelDirs, "extra folder to search for models")
+      ->allow_extra_args(false);
+}
+
+}  // namespace
+
+void addBenchCommand(CLI::App& app, int& exitCode) {
+  auto options = std::make_shared<BenchOptions>();
+  CLI::App* command = app.add_subcommand(
+      "bench",
+      "Run planners on problems many times, each run in a process of its own, and write OMPL "
+      "benchmark logs (for ompl_benchmark_statistics and Planner Arena)");
+  command->add_option("inputs", options->inputs,
+                      "problem files (with --merge-only: folders of results to merge)");
+  addSpecOptions(*command, *options);
+  command->add_option("-o,--output", options->output, "output folder")->capture_default_str();
+  command->add_option("--jobs", options->jobs, "runs at once")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
+      ->capture_default_str();
+  command
+      ->add_option("--shard", options->shard,
+                   "i/n: only the runs whose index is i-1 modulo n (merge with --merge-only)")
+      ->capture_default_str();
+  command->add_flag("--merge-only", options->mergeOnly,
+                    "run nothing: write OUT/logs from the results in OUT and the folders given");
+  command->footer(
+      "Output: OUT/runs/PROBLEM/CONFIG/run-R.json (one result per run; a run that has one is\n"
+      "not run again), OUT/plans/... (plans), OUT/console/... (what the runs printed),\n"
+      "OUT/logs/PROBLEM.log (OMPL benchmark logs). See docs/bench.md.\n"
+      "Exit codes: 0 every run finished (solved or not), 1 some run crashed or failed,\n"
+      "2 bad input, 130 interrupted.\n"
+      "Example: kautham bench problems/pusher_free.xml --planner KPIECE --planner RRT --runs 5 \\\n"
+      "           --time 10 -o out/bench\n"
+      "         ompl_benchmark_statistics out/bench/logs/*.log -d out/bench/bench.db");
+  command->callback([command, options, &exitCode] {
+    exitCode = runReportingErrors([&] { return runBench(*command, *options); });
+  });
+}
+
+}  // namespace kautham::apps

@@ -1,0 +1,37 @@
+#pragma once
+
+// Runs the runs of a benchmark, each in child processes of this same program: `kautham plan`,
+// then `kautham validate` of a solved plan. ODE's state is process-wide, so a run never shares
+// a process with another; `jobs` runs go at once. A run whose result file exists is skipped
+// (resume). Ctrl-C or SIGTERM kills the children and removes what the unfinished runs left.
+
+#include <cstddef>
+#include <filesystem>
+
+#include "BenchPreflight.h"
+#include "BenchSpec.h"
+
+namespace kautham::apps {
+
+struct BenchRunOptions {
+  std::filesystem::path output;  ///< OUT (see BenchLayout.h)
+  std::size_t jobs = 1;          ///< runs at once
+  Shard shard;
+  std::filesystem::path program;  ///< the kautham binary the children run
+};
+
+struct BenchSummary {
+  std::size_t total = 0;    ///< runs of this shard
+  std::size_t resumed = 0;  ///< had a result before: not run again
+  std::size_t done = 0;     ///< have a result now, resumed ones included
+  std::size_t solved = 0;
+  std::size_t failed = 0;  ///< a child crashed, failed or wrote nothing
+  bool interrupted = false;
+};
+
+/// Throws core::InputError, before running anything, when OUT holds a result of the same run
+/// made with another setup (resuming would mix two experiments) or one that cannot be read.
+BenchSummary runBenchmark(const BenchSpec& spec, const Preflight& preflight,
+                          const BenchRunOptions& options);
+
+}  // namespace kautham::apps

@@ -1,0 +1,230 @@
+#include "BenchSpec.h"
+
+#include <algorithm>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "kautham/core/InputError.h"
+
+namespace kautham::apps {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+/// Reads a benchmark file; every error names the file and, where the text shows it, the line.
+class BenchFileReader {
+ public:
+  explicit BenchFileReader(fs::path file) : file_(std::move(file)) {}
+
+  BenchSpec read() {
+    const json root = parse();
+    if (!root.is_object()) fail("", "a benchmark file holds one JSON object");
+    static const std::set<std::string> known{"name", "problems", "configs", "runs",
+                                             "seed", "time",     "threads", "validate"};
+    for (const auto& [key, value] : root.items())
+      if (known.count(key) == 0)
+        fail(key, fmt::format("unknown key \"{}\"; known: name, problems, configs, runs, seed, "
+                              "time, threads, validate",
+                              key));
+    BenchSpec spec;
+    if (root.contains("name")) spec.name = text(root["name"], "name");
+    if (root.contains("problems")) spec.problems = problems(root["problems"]);
+    if (root.contains("configs")) spec.configs = configs(root["configs"]);
+    if (root.contains("runs")) spec.runs = whole(root["runs"], "runs");
+    if (root.contains("seed"))
+      spec.seed = static_cast<std::uint32_t>(
+          whole(root["seed"], "seed", std::numeric_limits<std::uint32_t>::max()));
+    if (root.contains("time")) {
+      if (!root["time"].is_number()) fail("time", "\"time\" must be a number of seconds");
+      spec.time = root["time"].get<double>();
+    }
+    if (root.contains("threads"))
+      spec.threads = static_cast<unsigned>(whole(root["threads"], "threads", 4096));
+    if (root.contains("validate")) spec.validate = whole(root["validate"], "validate");
+    return spec;
+  }
+
+ private:
+  json parse() {
+    std::ifstream in(file_, std::ios::binary);
+    if (!in) throw core::InputError({file_, 0}, "cannot open the benchmark file");
+    std::ostringstream buffer;
+    buffer << in.rdbuf();
+    text_ = buffer.str();
+    try {
+      return json::parse(text_);
+    } catch (const json::parse_error& e) {
+      throw core::InputError({file_, lineAt(e.byte == 0 ? 0 : e.byte - 1)},
+                             std::string("not JSON: ") + e.what());
+    }
+  }
+
+  std::vector<fs::path> problems(const json& list) {
+    if (!list.is_array()) fail("problems", "\"problems\" must be an array of file names");
+    std::vector<fs::path> result;
+    for (const json& p : list) {
+      const fs::path path = text(p, "problems");
+      // Relative to the benchmark file, so that the file works from any folder.
+      result.push_back(path.is_absolute() ? path : (file_.parent_path() / path).lexically_normal());
+    }
+    return result;
+  }
+
+  std::vector<BenchConfig> configs(const json& list) {
+    if (!list.is_array()) fail("configs", "\"configs\" must be an array of objects");
+    std::vector<BenchConfig> result;
+    for (const json& c : list) {
+      if (!c.is_object() || !c.contains("planner"))
+        fail("configs", "each configuration needs at least a \"planner\"");
+      for (const auto& [key, value] : c.items())
+        if (key != "name" && key != "planner" && key != "set")
+          fail(key, "unknown key \"" + key + "\" in a configuration; known: name, planner, set");
+      BenchConfig config;
+      config.planner = text(c["planner"], "planner");
+      config.name = c.contains("name") ? text(c["name"], "name") : config.planner;
+      if (c.contains("set")) {
+        if (!c["set"].is_object()) fail("set", "\"set\" must map parameter names to values");
+        for (const auto& [name, value] : c["set"].items())
+          config.sets.push_back(name + "=" +
+                                (value.is_string() ? value.get<std::string>() : value.dump()));
+      }
+      result.push_back(std::move(config));
+    }
+    return result;
+  }
+
+  std::string text(const json& value, const std::string& key) {
+    if (!value.is_string()) fail(key, "\"" + key + "\" must be a string");
+    return value.get<std::string>();
+  }
+
+  std::size_t whole(const json& value, const std::string& key,
+                    std::uint64_t largest = std::numeric_limits<std::uint32_t>::max()) {
+    if (!value.is_number_unsigned() || value.get<std::uint64_t>() > largest)
+      fail(key, fmt::format("\"{}\" must be a whole number from 0 to {}", key, largest));
+    return static_cast<std::size_t>(value.get<std::uint64_t>());
+  }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    const std::size_t at = key.empty() ? std::string::npos : text_.find("\"" + key + "\"");
+    throw core::InputError({file_, at == std::string::npos ? 0 : lineAt(at)}, message);
+  }
+
+  int lineAt(std::size_t offset) const {
+    offset = std::min(offset, text_.size());
+    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + offset, '\n'));
+  }
+
+  fs::path file_;
+  std::string text_;
+};
+
+/// Names become folder names and the planner's line in the OMPL log.
+void checkName(const std::string& name, const std::string& what) {
+  const bool safe = !name.empty() && name != "." && name != ".." &&
+                    std::all_of(name.begin(), name.end(), [](char c) {
+                      return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ||
+                             c == '.' || c == '+';
+                    });
+  if (!safe)
+    throw std::invalid_argument(fmt::format(
+        "{} '{}': use letters, digits and - _ . + only (it names folders and log entries)", what,
+        name));
+}
+
+void checkSpec(const BenchSpec& spec) {
+  if (spec.problems.empty())
+    throw std::invalid_argument("no problem to run: give problem files or --file");
+  if (spec.configs.empty())
+    throw std::invalid_argument("no planner to run: give --planner, --config or --file");
+  if (spec.runs == 0) throw std::invalid_argument("--runs must be at least 1");
+  if (spec.seed == 0)
+    throw std::invalid_argument("--seed must be at least 1 (run r plans with seed + r)");
+  if (spec.time && !(*spec.time > 0.0)) throw std::invalid_argument("--time must be positive");
+  if (spec.threads && *spec.threads == 0) throw std::invalid_argument("--threads must be >= 1");
+  if (!spec.name.empty()) checkName(spec.name, "benchmark name");
+  std::set<std::string> names;
+  for (const BenchConfig& c : spec.configs) {
+    checkName(c.name, "configuration name");
+    if (!names.insert(c.name).second)
+      throw std::invalid_argument("configuration name '" + c.name +
+                                  "' is used twice; names must be unique");
+  }
+  std::set<std::string> problems;
+  for (const fs::path& p : spec.problems) {
+    checkName(problemName(p), "problem name");
+    if (!problems.insert(problemName(p)).second)
+      throw std::invalid_argument("two problems are named '" + problemName(p) +
+                                  "'; their results would share a folder");
+  }
+}
+
+}  // namespace
+
+BenchConfig parseConfig(const std::string& text) {
+  const std::size_t equals = text.find('=');
+  const std::size_t colon = text.find(':');
+  if (equals == std::string::npos || equals == 0 || (colon != std::string::npos && colon < equals))
+    throw std::invalid_argument("--config expects NAME=PLANNER[:PARAM=VALUE]..., got '" + text +
+                                "'");
+  BenchConfig config;
+  config.name = text.substr(0, equals);
+  std::istringstream rest(text.substr(equals + 1));
+  std::getline(rest, config.planner, ':');
+  if (config.planner.empty())
+    throw std::invalid_argument("--config '" + text + "' names no planner");
+  for (std::string set; std::getline(rest, set, ':');) {
+    if (set.find('=') == std::string::npos || set.front() == '=')
+      throw std::invalid_argument("--config '" + text + "': '" + set + "' is not PARAM=VALUE");
+    config.sets.push_back(set);
+  }
+  return config;
+}
+
+BenchSpec makeBenchSpec(const BenchArguments& arguments) {
+  BenchSpec spec = arguments.file ? BenchFileReader(*arguments.file).read() : BenchSpec{};
+  if (!arguments.problems.empty())
+    spec.problems.assign(arguments.problems.begin(), arguments.problems.end());
+  if (!arguments.configs.empty()) spec.configs = arguments.configs;
+  // --set applies to every configuration, before the configuration's own overrides.
+  for (BenchConfig& c : spec.configs)
+    c.sets.insert(c.sets.begin(), arguments.sets.begin(), arguments.sets.end());
+  if (arguments.runs) spec.runs = *arguments.runs;
+  if (arguments.seed) spec.seed = *arguments.seed;
+  if (arguments.time) spec.time = arguments.time;
+  if (arguments.threads) spec.threads = arguments.threads;
+  if (arguments.validate) spec.validate = *arguments.validate;
+  spec.modelDirs = arguments.modelDirs;
+  checkSpec(spec);
+  return spec;
+}
+
+std::string problemName(const std::filesystem::path& problem) { return problem.stem().string(); }
+
+std::vector<RunKey> allRuns(const BenchSpec& spec) {
+  std::vector<RunKey> runs;
+  for (std::size_t p = 0; p < spec.problems.size(); ++p)
+    for (std::size_t c = 0; c < spec.configs.size(); ++c)
+      for (std::size_t r = 0; r < spec.runs; ++r) runs.push_back({p, c, r, runs.size()});
+  return runs;
+}
+
+Shard parseShard(const std::string& text) {
+  Shard shard;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> shard.index >> slash >> shard.count) || slash != '/' || !in.eof() ||
+      shard.count == 0 || shard.index == 0 || shard.index > shard.count)
+    throw std::invalid_argument("--shard expects i/n with 1 <= i <= n, got '" + text + "'");
+  return shard;
+}
+
+}  // namespace kautham::apps
