@@ -3,9 +3,11 @@
 #include <map>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "Commands.h"
 #include "StartCheck.h"
+#include "kautham/core/ApproachCorridor.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -130,6 +132,33 @@ void printSettings(const core::Problem& problem) {
       k.jointLimitTolerance, k.jointSpeedFactor, k.maxLinkSpeed);
 }
 
+/// A side pre-grasp: the level axis, the free space and the objects blocking the approach.
+void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region) {
+  if (region.levelAxis)
+    fmt::print("            the goal link's axis ({:g}, {:g}, {:g}) level within {:g} rad\n",
+               region.levelAxis->x(), region.levelAxis->y(), region.levelAxis->z(),
+               region.approachTolerance);
+  if (region.freeSpace) {
+    const core::GoalRegion::FreeSpace& box = *region.freeSpace;
+    fmt::print(
+        "            free space: a {:g} x {:g} x {:g} m box at ({:g}, {:g}, {:g}) in the goal "
+        "link's frame holds no movable object\n",
+        box.size.x(), box.size.y(), box.size.z(), box.center.x(), box.center.y(), box.center.z());
+  }
+  if (region.approachCorridor <= 0.0) return;
+  const std::vector<std::string> blockers = core::approachBlockers(problem, region);
+  int movable = 0;
+  for (const core::ObjectInstance& object : problem.objects)
+    movable += object.role == core::ObjectRole::Movable;
+  const int needed = movable >= 10 ? (movable + 4) / 5 : 0;
+  fmt::print(
+      "blockers    {} of {} movable objects on the pre-grasp or in the {:g} m approach "
+      "corridor{}{}{}\n",
+      blockers.size(), movable, region.approachCorridor,
+      needed > 0 ? fmt::format(" (the suite's rule asks for at least {})", needed) : "",
+      blockers.empty() ? "" : ": ", fmt::join(blockers, ", "));
+}
+
 int runCheck(const CheckOptions& options) {
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
@@ -162,6 +191,7 @@ int runCheck(const CheckOptions& options) {
         "{:.1f} cm from the start\n",
         problem.queries[q].name, region.link, context->goal().getThreshold(), goal.x(), goal.y(),
         goal.z(), approach, 100.0 * context->goal().distance(start));
+    printSideGrasp(problem, region);
   }
   fmt::print("ok\n");
   return kExitSolved;

@@ -1,4 +1,5 @@
 #include "ClutterGenerator.h"
+#include "PlacementMath.h"
 
 #include <algorithm>
 #include <random>
@@ -10,12 +11,7 @@ namespace kautham::apps {
 
 namespace {
 
-// Every length below is a whole number of units of 0.1 mm, and every computation on them is
-// done in integers: the placement is then the same on every machine and standard library
-// (std::mt19937_64 is specified bit for bit; std::uniform_*_distribution and floating-point
-// rounding are not).
-using Units = std::int64_t;
-constexpr double kUnit = 1e-4;  // metres per unit
+using namespace placement;
 
 constexpr Units kTableHalfX = 6000;  // models/objects/table.urdf: 1.2 m x 0.8 m, centre (0, 0)
 constexpr Units kTableHalfY = 4000;
@@ -32,11 +28,6 @@ constexpr Units kGrowStep = 500;           // the clutter region grows by 5 cm w
 constexpr Units kMaxRegion = 14000;        // by then it covers the whole table
 constexpr int kAttemptsPerRegion = 400;    // failed samples before the region grows
 constexpr int kAttemptsAtLargest = 20000;  // failed samples at full size before giving up
-
-struct Point {
-  Units x;
-  Units y;
-};
 
 /// An axis-aligned rectangle of the table that a can must keep clear of: the footprint of
 /// a part of the robot that is less than 15 cm above the cans' tops at the start (measured
@@ -128,35 +119,11 @@ Point goalPoint(const RobotSetup& setup) {
   return {setup.target.x, setup.target.y - setup.goalOffsetY};
 }
 
-Units squared(Units v) { return v * v; }
-
-Units distanceSquared(Point a, Point b) { return squared(a.x - b.x) + squared(a.y - b.y); }
-
 /// Squared distance from a point to a rectangle (0 inside it).
 Units distanceSquared(Point p, const KeepOut& box) {
   const Units dx = std::max<Units>({box.xmin - p.x, 0, p.x - box.xmax});
   const Units dy = std::max<Units>({box.ymin - p.y, 0, p.y - box.ymax});
   return squared(dx) + squared(dy);
-}
-
-/// A whole number in [lo, hi], each equally likely: our own mapping of the generator's 64-bit
-/// output, so that it does not depend on the standard library.
-Units uniform(std::mt19937_64& random, Units lo, Units hi) {
-  const std::uint64_t range = static_cast<std::uint64_t>(hi - lo) + 1;
-  const std::uint64_t rejectBelow = (0 - range) % range;  // 2^64 mod range
-  std::uint64_t draw;
-  do draw = random();
-  while (draw < rejectBelow);
-  return lo + static_cast<Units>(draw % range);
-}
-
-/// A point in the disc of the given radius about `centre`, each equally likely.
-Point inDisc(std::mt19937_64& random, Point centre, Units radius) {
-  for (;;) {
-    const Units dx = uniform(random, -radius, radius);
-    const Units dy = uniform(random, -radius, radius);
-    if (squared(dx) + squared(dy) <= squared(radius)) return {centre.x + dx, centre.y + dy};
-  }
 }
 
 class Placer {
@@ -236,47 +203,6 @@ class Placer {
   std::vector<CanPlacement> cans_;
 };
 
-/// Text for an XML attribute value.
-std::string escapeAttribute(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
-/// Text for an XML comment, which may not contain "--" nor end with "-".
-std::string escapeComment(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '-' && !out.empty() && out.back() == '-') out += ' ';
-    out += c;
-  }
-  if (!out.empty() && out.back() == '-') out += ' ';
-  return out;
-}
-
-/// A length in units as metres, exactly: "-0.1234".
-std::string metres(Units value) {
-  const Units magnitude = value < 0 ? -value : value;
-  return fmt::format("{}{}.{:04d}", value < 0 ? "-" : "", magnitude / 10000, magnitude % 10000);
-}
-
 }  // namespace
 
 std::vector<std::string> clutterRobots() {
@@ -320,6 +246,8 @@ std::string clutterCommandLine(const ClutterOptions& options, const std::string&
   std::string line = fmt::format("kautham generate clutter -r {} -n {} -s {}", options.robot,
                                  options.objects, options.seed);
   if (options.gap != ClutterOptions().gap) line += fmt::format(" -g {:g}", options.gap);
+  if (options.layout != ClutterOptions().layout) line += " -l " + options.layout;
+  if (options.mix) line += " -m";
   return line + " -o " + outputName;
 }
 

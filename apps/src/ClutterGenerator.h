@@ -16,6 +16,10 @@ struct ClutterOptions {
   std::uint64_t seed = 1;
   std::string target = "glass";
   double gap = 0.01;  ///< least distance between any two objects (m)
+  /// "side": the dense suite, a side pre-grasp (SideGraspClutter.h); "top": the earlier
+  /// top-down suite (kuka_cans_N), kept for the regression tests that use it.
+  std::string layout = "side";
+  bool mix = false;  ///< side layout: a bottle, boxes and cans instead of cans only
 };
 
 constexpr int kMaxClutterObjects = 60;

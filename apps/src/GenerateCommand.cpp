@@ -10,6 +10,7 @@
 
 #include "ClutterGenerator.h"
 #include "Commands.h"
+#include "SideGraspClutter.h"
 
 namespace kautham::apps {
 
@@ -31,12 +32,25 @@ int runGenerateClutter(const GenerateOptions& options) {
   if (fs::is_directory(output))
     throw std::invalid_argument(fmt::format("{} is a folder, not a file", options.output));
 
-  const std::vector<CanPlacement> cans = placeClutter(options.clutter);
   // The file name, not the folder, goes into the file: the same options give the same bytes
   // wherever the file is written.
   const std::string name = output.filename().string();
-  const std::string xml = clutterProblemXml(options.clutter, cans, output.stem().string(),
-                                            clutterCommandLine(options.clutter, name));
+  const std::string command = clutterCommandLine(options.clutter, name);
+  std::string xml;
+  std::size_t objects = 0;
+  long blockers = 0;
+  if (options.clutter.layout == "top") {
+    if (options.clutter.mix) throw std::invalid_argument("--mix needs the side layout");
+    const std::vector<CanPlacement> cans = placeClutter(options.clutter);
+    xml = clutterProblemXml(options.clutter, cans, output.stem().string(), command);
+    objects = cans.size();
+    blockers = std::count_if(cans.begin(), cans.end(), [](auto& c) { return c.blocker; });
+  } else {
+    const std::vector<SceneObject> placed = placeSideGraspClutter(options.clutter);
+    xml = sideGraspProblemXml(options.clutter, placed, output.stem().string(), command);
+    objects = placed.size();
+    blockers = std::count_if(placed.begin(), placed.end(), [](auto& o) { return o.blocker; });
+  }
 
   if (output.has_parent_path()) fs::create_directories(output.parent_path());
   std::ofstream out(output, std::ios::binary);
@@ -44,10 +58,9 @@ int runGenerateClutter(const GenerateOptions& options) {
   out.close();
   if (!out) throw std::runtime_error(fmt::format("could not write {}", options.output));
 
-  const auto blockers =
-      std::count_if(cans.begin(), cans.end(), [](const CanPlacement& c) { return c.blocker; });
-  fmt::print("wrote     {}: {}, {} cans ({} on the approach to the goal), seed {}\n",
-             options.output, options.clutter.robot, cans.size(), blockers, options.clutter.seed);
+  fmt::print("wrote     {}: {}, {} layout, {} objects ({} on the approach to the goal), seed {}\n",
+             options.output, options.clutter.robot, options.clutter.layout, objects, blockers,
+             options.clutter.seed);
   return kExitSolved;
 }
 
@@ -59,7 +72,7 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
 
   auto options = std::make_shared<GenerateOptions>();
   CLI::App* clutter = generate->add_subcommand(
-      "clutter", "A robot, a target glass and N movable cans on a table, reproducible by seed");
+      "clutter", "A robot, a target and N movable objects on a table, reproducible by seed");
   clutter->add_option("-r,--robot", options->clutter.robot, "the robot")
       ->required()
       ->check(CLI::IsMember(clutterRobots()));
@@ -74,11 +87,19 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
   clutter->add_option("-g,--gap", options->clutter.gap, "least distance between two objects (m)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.2));
+  clutter
+      ->add_option("-l,--layout", options->clutter.layout,
+                   "side: the dense suite, a side pre-grasp (kuka_clutter_N); top: the "
+                   "earlier top-down suite (kuka_cans_N)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"side", "top"}));
+  clutter->add_flag("-m,--mix", options->clutter.mix,
+                    "side layout: a bottle, then boxes and cans alternating, instead of cans");
   clutter->add_option("-o,--output", options->output, "problem file to write (XML)")->required();
   clutter->add_flag("-f,--force", options->force, "overwrite the output file if it exists");
   clutter->footer(
       "Example: kautham generate clutter --robot kuka --objects 10 --seed 3 -o "
-      "problems/kuka_cans_10.xml");
+      "problems/kuka_clutter_10.xml");
   clutter->callback([options, &exitCode] {
     exitCode = runReportingErrors([&] { return runGenerateClutter(*options); });
   });

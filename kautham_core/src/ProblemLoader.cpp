@@ -504,7 +504,8 @@ class ProblemReader {
 
   GoalRegion readGoalRegion(const XMLElement& e) const {
     xml_.allowAttributes(
-        e, {"link", "relativeTo", "offset", "tolerance", "approach", "approachTolerance"});
+        e, {"link", "relativeTo", "offset", "tolerance", "approach", "approachTolerance",
+            "levelAxis", "freeSpace", "freeSpaceCenter", "approachCorridor"});
     GoalRegion goal;
     goal.where = xml_.at(e);
     goal.link = xml_.requiredText(e, "link");
@@ -520,7 +521,33 @@ class ProblemReader {
     } else if (xml_.optionalText(e, "approachTolerance")) {
       xml_.fail(e, "approachTolerance needs an approach=\"x y z\" direction");
     }
+    readGoalSideGrasp(e, goal);
     return goal;
+  }
+
+  /// levelAxis, freeSpace and freeSpaceCenter: what makes a side pre-grasp real.
+  void readGoalSideGrasp(const XMLElement& e, GoalRegion& goal) const {
+    if (xml_.optionalText(e, "levelAxis")) {
+      if (!goal.approach) xml_.fail(e, "levelAxis needs an approach=\"x y z\" direction");
+      const Eigen::Vector3d axis = xml_.vector3(e, "levelAxis", {});
+      if (!(axis.norm() > 1e-9)) xml_.fail(e, "levelAxis must be a non-zero direction");
+      goal.levelAxis = axis.normalized();
+    }
+    if (xml_.optionalText(e, "freeSpace")) {
+      GoalRegion::FreeSpace box;
+      box.size = xml_.vector3(e, "freeSpace", {});
+      if (!(box.size.minCoeff() > 0.0) || !(box.size.maxCoeff() < 1.0))
+        xml_.fail(e, "freeSpace must be three box sides in (0, 1) m, e.g. \"0.04 0.12 0.19\"");
+      box.center = xml_.vector3(e, "freeSpaceCenter", box.center);
+      goal.freeSpace = box;
+    } else if (xml_.optionalText(e, "freeSpaceCenter")) {
+      xml_.fail(e, "freeSpaceCenter needs a freeSpace=\"x y z\" box size");
+    }
+    if (xml_.optionalText(e, "approachCorridor")) {
+      if (!goal.freeSpace || !goal.levelAxis)
+        xml_.fail(e, "approachCorridor needs freeSpace and levelAxis (its width and direction)");
+      goal.approachCorridor = positive(e, "approachCorridor", 0.0);
+    }
   }
 
   // ----- checks of the whole problem -----

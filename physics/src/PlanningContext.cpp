@@ -28,6 +28,8 @@ GoalSpec makeGoalSpec(const core::Problem& problem, const core::GoalRegion& goal
   spec.tolerance = goal.tolerance;
   spec.approach = problem.goalApproach(goal);
   spec.approachTolerance = goal.approachTolerance;
+  spec.levelAxis = goal.levelAxis;
+  spec.freeSpace = goal.freeSpace;
   if (goal.isConfiguration()) {
     spec.joints = problem.jointValuesFromControls(goal.controls);
     for (const JointInfo& joint : layout.joints)

@@ -17,6 +17,7 @@ WorkspaceGoal::WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
                              std::shared_ptr<const WorldLayout> layout, GoalSpec spec)
     : GoalRegion(si), layout_(std::move(layout)), spec_(std::move(spec)) {
   setThreshold(spec_.joints.empty() ? spec_.tolerance : spec_.jointTolerance);
+  if (spec_.freeSpace) freeSpace_.emplace(layout_, spec_.freeSpace->size, spec_.freeSpace->center);
 }
 
 double WorkspaceGoal::distanceGoal(const ompl::base::State* state) const {
@@ -33,13 +34,31 @@ bool WorkspaceGoal::isSatisfied(const ompl::base::State* state, double* distance
 
 double WorkspaceGoal::distance(const double* state) const {
   if (!spec_.joints.empty()) return jointError(state);
-  const double excess = std::max(0.0, approachError(state) - spec_.approachTolerance);
+  const double excess = std::max(0.0, approachError(state) - spec_.approachTolerance) +
+                        std::max(0.0, levelError(state) - spec_.approachTolerance);
   return positionError(state) + kMetresPerRadian * excess;
 }
 
 bool WorkspaceGoal::reached(const double* state) const {
   if (!spec_.joints.empty()) return jointError(state) <= spec_.jointTolerance;
-  return positionError(state) <= spec_.tolerance && approachError(state) <= spec_.approachTolerance;
+  // The free space is looked at last: it is the only costly test.
+  return positionError(state) <= spec_.tolerance &&
+         approachError(state) <= spec_.approachTolerance &&
+         levelError(state) <= spec_.approachTolerance && freeSpaceOccupants(state).empty();
+}
+
+double WorkspaceGoal::levelError(const double* state) const {
+  if (!spec_.levelAxis) return 0.0;
+  const Eigen::Vector3d axis = layout_->goalLinkOrientation(state) * *spec_.levelAxis;
+  return std::asin(std::clamp(std::abs(axis.z()), 0.0, 1.0));
+}
+
+std::vector<std::string> WorkspaceGoal::freeSpaceOccupants(const double* state) const {
+  if (!freeSpace_) return {};
+  Eigen::Isometry3d goalLink = Eigen::Isometry3d::Identity();
+  goalLink.linear() = layout_->goalLinkOrientation(state);
+  goalLink.translation() = layout_->goalLinkPosition(state);
+  return freeSpace_->occupants(state, goalLink);
 }
 
 double WorkspaceGoal::positionError(const double* state) const {

@@ -11,6 +11,7 @@
 
 #include "TestPaths.h"
 #include "apps/CommandTestSupport.h"
+#include "kautham/core/ApproachCorridor.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -30,6 +31,11 @@ using GenerateCommandTest = test::TemporaryFolderTest;
 
 CommandRun generate(const std::string& arguments) {
   return kautham("generate clutter " + arguments);
+}
+
+/// The earlier top-down layout (kuka_cans_N), which the tests below the side layout's check.
+CommandRun generateTop(const std::string& arguments) {
+  return generate("--layout top " + arguments);
 }
 
 core::Problem load(const fs::path& file) {
@@ -114,11 +120,13 @@ TEST_F(GenerateCommandTest, SameSeedGivesTheSameBytesAnotherSeedAnotherScene) {
   fs::create_directories(folder / "b");
   fs::create_directories(folder / "c");
   const std::string arguments = "--robot kuka --objects 12 --seed 7 -o ";
-  ASSERT_EQ(generate(arguments + (folder / "a" / "scene.xml").string()).exitCode, 0);
+  ASSERT_EQ(generateTop(arguments + (folder / "a" / "scene.xml").string()).exitCode, 0);
   // Short options, and the same options in another order, are the same arguments.
-  ASSERT_EQ(generate("-s 7 -n 12 -r kuka -o " + (folder / "b" / "scene.xml").string()).exitCode, 0);
   ASSERT_EQ(
-      generate("--robot kuka --objects 12 --seed 8 -o " + (folder / "c" / "scene.xml").string())
+      generate("-s 7 -n 12 -r kuka -l top -o " + (folder / "b" / "scene.xml").string()).exitCode,
+      0);
+  ASSERT_EQ(
+      generateTop("--robot kuka --objects 12 --seed 8 -o " + (folder / "c" / "scene.xml").string())
           .exitCode,
       0);
   const std::string a = readFile(folder / "a" / "scene.xml");
@@ -142,10 +150,10 @@ TEST_F(GenerateCommandTest, SameSeedGivesTheSameBytesAnotherSeedAnotherScene) {
 
 TEST_F(GenerateCommandTest, HeaderRecordsTheCommandThatRemakesTheFile) {
   const fs::path file = folder / "kuka_cans_10.xml";
-  ASSERT_EQ(generate("--robot kuka --objects 10 --seed 3 -o " + file.string()).exitCode, 0);
+  ASSERT_EQ(generateTop("--robot kuka --objects 10 --seed 3 -o " + file.string()).exitCode, 0);
   const std::string text = readFile(file);
   const std::string line =
-      "Made by: kautham generate clutter -r kuka -n 10 -s 3 -o kuka_cans_10.xml";
+      "Made by: kautham generate clutter -r kuka -n 10 -s 3 -l top -o kuka_cans_10.xml";
   EXPECT_NE(text.find(line), std::string::npos) << text;
   EXPECT_NE(text.find("<Problem name=\"kuka_cans_10\">"), std::string::npos);
   // "--" may not appear inside an XML comment.
@@ -167,8 +175,9 @@ TEST_F(GenerateCommandTest, ScenesFollowThePlacementRulesAndPassTheStartCheck) {
   for (const char* robot : {"kuka", "yumi"})
     for (int objects : {0, 5, 10, 25, 40}) {
       const fs::path file = folder / (std::string(robot) + "_" + std::to_string(objects) + ".xml");
-      const CommandRun made = generate(std::string("--robot ") + robot + " --objects " +
-                                       std::to_string(objects) + " --seed 11 -o " + file.string());
+      const CommandRun made =
+          generateTop(std::string("--robot ") + robot + " --objects " + std::to_string(objects) +
+                      " --seed 11 -o " + file.string());
       ASSERT_EQ(made.exitCode, 0) << made.output;
       expectValidScene(file, objects);
       // The start state, in the real physics: nothing interpenetrates, every rule holds.
@@ -180,7 +189,7 @@ TEST_F(GenerateCommandTest, ScenesFollowThePlacementRulesAndPassTheStartCheck) {
 
 TEST_F(GenerateCommandTest, TooManyObjectsExitsTwoSayingHowManyFit) {
   const fs::path file = folder / "crowded.xml";
-  const CommandRun run = generate("--robot yumi --objects 40 --gap 0.15 -o " + file.string());
+  const CommandRun run = generateTop("--robot yumi --objects 40 --gap 0.15 -o " + file.string());
   EXPECT_EQ(run.exitCode, 2) << run.output;
   const std::regex message("only ([0-9]+) of 40 objects fit");
   std::smatch match;
@@ -217,13 +226,67 @@ TEST_F(GenerateCommandTest, BadArgumentsExitTwo) {
   EXPECT_EQ(kautham("generate").exitCode, 2);                   // no kind of scene
 }
 
+/// The dense suite's promises (docs/scenes.md): the same bytes for the same arguments, objects
+/// apart and in the zone, ceil(N/5) blockers from 10 objects on as `kautham check` counts them
+/// (core::approachBlockers, the goal's corridor and free space), and a valid start.
+TEST_F(GenerateCommandTest, SideScenesAreReproducibleAndBlockTheApproach) {
+  for (const char* robot : {"kuka", "yumi"})
+    for (int objects : {5, 10, 20, 30}) {
+      const std::string name = std::string(robot) + "_" + std::to_string(objects) + ".xml";
+      fs::create_directories(folder / "again");
+      const std::string arguments =
+          std::string("-r ") + robot + " -n " + std::to_string(objects) + " -s 4 -o ";
+      const CommandRun made = generate(arguments + (folder / name).string());
+      ASSERT_EQ(made.exitCode, 0) << made.output;
+      ASSERT_EQ(generate(arguments + (folder / "again" / name).string()).exitCode, 0);
+      EXPECT_EQ(readFile(folder / name), readFile(folder / "again" / name)) << name;
+
+      const core::Problem problem = load(folder / name);
+      const auto movable = withRole(problem, core::ObjectRole::Movable);
+      ASSERT_EQ(movable.size(), static_cast<std::size_t>(objects));
+      for (std::size_t i = 0; i < movable.size(); ++i)
+        for (std::size_t j = i + 1; j < movable.size(); ++j)
+          EXPECT_GE(planarDistance(movable[i]->home.position, movable[j]->home.position),
+                    2 * kCanRadius + kGap - 1e-9)
+              << name << ": " << movable[i]->name << " and " << movable[j]->name;
+      const core::GoalRegion& goal = problem.queries.at(0).goal;
+      ASSERT_TRUE(goal.freeSpace && goal.levelAxis && goal.approach) << name;
+      EXPECT_LE(goal.tolerance, 0.02);
+      EXPECT_LE(goal.approachTolerance, 0.3);
+      const auto blockers = core::approachBlockers(problem, goal);
+      if (objects >= 10) {
+        EXPECT_GE(blockers.size(), static_cast<std::size_t>((objects + 4) / 5));
+      }
+
+      const CommandRun check = kautham("check " + (folder / name).string() + " --model-dir models");
+      ASSERT_EQ(check.exitCode, 0) << name << "\n" << check.output;
+      EXPECT_NE(check.output.find("start valid"), std::string::npos) << check.output;
+      EXPECT_NE(check.output.find("blockers    " + std::to_string(blockers.size()) + " of " +
+                                  std::to_string(objects) + " movable objects"),
+                std::string::npos)
+          << check.output;
+    }
+}
+
+TEST_F(GenerateCommandTest, MixedSceneHasABottleBoxesAndCans) {
+  const fs::path file = folder / "mixed.xml";
+  ASSERT_EQ(generate("-r kuka -n 9 --mix -o " + file.string()).exitCode, 0);
+  const std::string text = readFile(file);
+  EXPECT_NE(text.find("objects/bottle.urdf"), std::string::npos);
+  EXPECT_NE(text.find("<KauthamName name=\"box4\"/>"), std::string::npos);
+  EXPECT_NE(text.find("<KauthamName name=\"can4\"/>"), std::string::npos);
+  EXPECT_EQ(kautham("check " + file.string() + " --model-dir models").exitCode, 0);
+  EXPECT_EQ(generate("-r kuka -n 9 --mix --layout top -o " + (folder / "x.xml").string()).exitCode,
+            2);
+}
+
 /// Every shipped scene is what its recorded command writes today: none was edited by hand or
 /// left behind by a change of the generator.
 TEST_F(GenerateCommandTest, ShippedScenesAreUpToDate) {
   int scenes = 0;
   for (const auto& entry : fs::directory_iterator(fs::path(KAUTHAM_SOURCE_DIR) / "problems")) {
     const std::string name = entry.path().filename().string();
-    if (!std::regex_match(name, std::regex("(kuka|yumi)_cans_[0-9]+\\.xml"))) continue;
+    if (!std::regex_match(name, std::regex("(kuka|yumi)_(cans|clutter)_[0-9a-z]+\\.xml"))) continue;
     ++scenes;
     const std::string text = readFile(entry.path());
     std::smatch made;
@@ -235,7 +298,7 @@ TEST_F(GenerateCommandTest, ShippedScenesAreUpToDate) {
     ASSERT_EQ(run.exitCode, 0) << name << "\n" << run.output;
     EXPECT_EQ(readFile(folder / name), text) << name << " differs from what its command writes";
   }
-  EXPECT_EQ(scenes, 16);
+  EXPECT_EQ(scenes, 4 + 18);  // kuka/yumi_cans_5/10; the dense suite N = 5..40 and two demos
 }
 
 }  // namespace

@@ -124,7 +124,20 @@ struct GoalRegion {
   double tolerance = 0.02;
   std::optional<Eigen::Vector3d> approach;  ///< unit vector, in the frame of `relativeTo`
   double approachTolerance = 0.35;          ///< rad
-  std::vector<double> controls;             ///< configuration goal (normalized controls)
+  /// An axis of the goal link (in its own frame) that must lie level, within
+  /// `approachTolerance` of horizontal: for a side grasp, the axis the fingers open along.
+  std::optional<Eigen::Vector3d> levelAxis;
+  /// A box in the goal link's frame that no object but the target may occupy in a goal state:
+  /// the space between the open fingers and on the final approach to the grasp.
+  struct FreeSpace {
+    Eigen::Vector3d size = Eigen::Vector3d::Zero();    ///< full side lengths, m
+    Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< in the goal link's frame
+  };
+  std::optional<FreeSpace> freeSpace;
+  /// Length (m) of the straight corridor before the pre-grasp, along the approach, that the
+  /// gripper sweeps on a side approach; `kautham check` counts the objects standing in it.
+  double approachCorridor = 0.0;
+  std::vector<double> controls;  ///< configuration goal (normalized controls)
   double jointTolerance = 0.05;
   SourceLocation where;
 

@@ -7,6 +7,7 @@
 
 #include <ompl/base/goals/GoalRegion.h>
 
+#include "kautham/physics/GoalFreeSpace.h"
 #include "kautham/physics/WorldLayout.h"
 
 namespace kautham::physics {
@@ -17,14 +18,19 @@ struct GoalSpec {
   double tolerance = 0.02;                             ///< m
   std::optional<Eigen::Vector3d> approach;  ///< world direction for the goal link's +z axis
   double approachTolerance = 0.35;          ///< rad
-  std::vector<double> joints;               ///< a configuration goal's joint values (else empty)
-  std::vector<double> jointRanges;          ///< per joint: what a normalized unit is
-  double jointTolerance = 0.05;             ///< normalized Euclidean distance
+  /// A goal-link axis (link frame) that must be level within approachTolerance.
+  std::optional<Eigen::Vector3d> levelAxis;
+  std::optional<core::GoalRegion::FreeSpace> freeSpace;  ///< must hold no movable object
+  std::vector<double> joints;       ///< a configuration goal's joint values (else empty)
+  std::vector<double> jointRanges;  ///< per joint: what a normalized unit is
+  double jointTolerance = 0.05;     ///< normalized Euclidean distance
 };
 
 /// The goal of a query. A pre-grasp region: the goal link's origin within a tolerance of a
 /// point, and its +z axis (the approach direction of the gripper) within an angle of a
-/// direction when the goal gives one. Or, for Kautham's <Goal>, a configuration.
+/// direction when the goal gives one; a level axis (the fingers' opening axis) within the same
+/// angle of horizontal; and no movable object in the free space between the fingers. Or, for
+/// Kautham's <Goal>, a configuration.
 class WorkspaceGoal : public ompl::base::GoalRegion {
  public:
   WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
@@ -40,6 +46,10 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
   bool reached(const double* state) const;
   /// Angle between the goal link's +z axis and the approach direction (0 without one).
   double approachError(const double* state) const;
+  /// Angle between the level axis and the horizontal plane (0 without one).
+  double levelError(const double* state) const;
+  /// Movable objects in the goal's free space at this state (empty without one).
+  std::vector<std::string> freeSpaceOccupants(const double* state) const;
 
   const Eigen::Vector3d& position() const { return spec_.position; }
   const GoalSpec& spec() const { return spec_; }
@@ -53,6 +63,7 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
 
   std::shared_ptr<const WorldLayout> layout_;
   GoalSpec spec_;
+  std::optional<GoalFreeSpace> freeSpace_;
   mutable double best_ = std::numeric_limits<double>::infinity();
 };
 

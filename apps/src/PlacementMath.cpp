@@ -1,0 +1,62 @@
+#include "PlacementMath.h"
+
+#include <fmt/format.h>
+
+namespace kautham::apps::placement {
+
+Units uniform(std::mt19937_64& random, Units lo, Units hi) {
+  const std::uint64_t range = static_cast<std::uint64_t>(hi - lo) + 1;
+  const std::uint64_t rejectBelow = (0 - range) % range;  // 2^64 mod range
+  std::uint64_t draw;
+  do draw = random();
+  while (draw < rejectBelow);
+  return lo + static_cast<Units>(draw % range);
+}
+
+Point inDisc(std::mt19937_64& random, Point centre, Units radius) {
+  for (;;) {
+    const Units dx = uniform(random, -radius, radius);
+    const Units dy = uniform(random, -radius, radius);
+    if (squared(dx) + squared(dy) <= squared(radius)) return {centre.x + dx, centre.y + dy};
+  }
+}
+
+std::string metres(Units value) {
+  const Units magnitude = value < 0 ? -value : value;
+  return fmt::format("{}{}.{:04d}", value < 0 ? "-" : "", magnitude / 10000, magnitude % 10000);
+}
+
+std::string escapeAttribute(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string escapeComment(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '-' && !out.empty() && out.back() == '-') out += ' ';
+    out += c;
+  }
+  if (!out.empty() && out.back() == '-') out += ' ';
+  return out;
+}
+
+}  // namespace kautham::apps::placement

@@ -1,0 +1,367 @@
+#include "SideGraspClutter.h"
+
+#include <algorithm>
+#include <random>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "PlacementMath.h"
+
+namespace kautham::apps {
+
+namespace {
+
+using namespace placement;
+
+constexpr int kBlockersFrom = 10;          // from this many objects on, some block the approach
+constexpr int kAttemptsPerObject = 20000;  // failed samples before an object is given up
+constexpr Units kFreeSpaceSlack = 200;     // the first blocker stands within 2 cm of the pre-grasp
+
+/// A rectangle of the table, axis-aligned.
+struct Rect {
+  Units xmin, xmax, ymin, ymax;
+};
+
+/// What the generator knows of an object model: its footprint and where it stands.
+struct ObjectModel {
+  const char* kind;
+  const char* urdf;
+  Units radius;   ///< of a disc that holds its footprint (a box's circumscribed circle)
+  const char* z;  ///< its frame's height when it stands on the table
+};
+
+const ObjectModel& objectModel(const std::string& kind) {
+  static const ObjectModel models[] = {
+      {"can", "objects/can.urdf", 330, "0.811"},
+      {"box", "objects/box.urdf", 425, "0.80"},
+      {"bottle", "objects/bottle.urdf", 350, "0.875"},
+  };
+  for (const ObjectModel& model : models)
+    if (kind == model.kind) return model;
+  throw std::logic_error("unknown object kind " + kind);
+}
+
+/// Everything fixed per robot. The numbers come from the robots' kinematics (docs/scenes.md
+/// gives them; tests/apps/GenerateCommandTest.cpp checks the start and the goal).
+/// The approach is along +y for both robots: from the robot (its arm's shoulder) to the target.
+struct SideSetup {
+  const char* key;
+  const char* description;
+  const char* urdf;
+  const char* name;
+  const char* home;
+  const char* controls;
+  const char* init;
+  const char* initComment;
+  const char* goalLink;
+  const char* targetUrdf;
+  const char* targetName;
+  const char* targetZ;
+  Point target;
+  Units targetRadius;
+  const char* graspZOffset;     ///< grasp height above the target's frame, m
+  Units pregraspOffset;         ///< the TCP's distance before the target's centre, along +y
+  const char* levelAxis;        ///< the fingers' opening axis in the TCP frame
+  Units freeWidth;              ///< the free space's width across the approach (fingers and gap)
+  Units freeBehind;             ///< the free space reaches this far behind the TCP (finger length)
+  Units freeAhead;              ///< and this far ahead (past the target's centre)
+  const char* freeSpace;        ///< the same box, as the goal's attribute: size ...
+  const char* freeSpaceCenter;  ///< ... and centre, in the TCP frame
+  Rect zone;                    ///< where object centres may be
+  std::vector<Rect> keepOuts;   ///< footprints of the robot's low parts at the start
+  const char* workspaceMin;
+  const char* workspaceMax;
+};
+
+const std::vector<SideSetup>& sideSetups() {
+  static const std::vector<SideSetup> setups = {
+      {"kuka",
+       "A KUKA LWR 4+ with a two-finger gripper stands on a 25 cm stand at the side of the table\n"
+       "     and must bring its open gripper to a side pre-grasp of a cylinder at the back of the\n"
+       "     clutter: gripper level, fingers open around the cylinder's upper part.",
+       "robots/kuka_lwr4.urdf",
+       "kuka",
+       R"(X="0.0" Y="-0.5" Z="1.0" WX="0" WY="0" WZ="1" TH="1.5707963")",
+       "robots/controls/kuka_lwr4_arm_open.cntr",
+       "0.5 0.7387 0.5 0.0225 0.5 0.1586 0.5",
+       "A2 = +60 deg, A4 = -115 deg, A6 = -82 deg: the arm is drawn back and up, the gripper\n"
+       "             level and pointing at the target; TCP at (0, 0.06, 1.14), 32 cm from the "
+       "pre-grasp.",
+       "kuka_tcp",
+       "objects/cylinder.urdf",
+       "cylinder",
+       "0.82",
+       {0, 2500},
+       350,
+       "0.03",
+       550,
+       "0 1 0",
+       1200,
+       600,
+       950,
+       "0.04 0.12 0.155",
+       "0 0 0.0175",
+       {-3000, 3000, -3200, 3470},
+       {},
+       "-0.5 -0.4 0.77",
+       "0.5 0.4 1.45"},
+      {"yumi",
+       "An ABB YuMi stands on the table and must bring its left gripper, open, to a side\n"
+       "     pre-grasp of a slim glass at the back of the clutter: gripper level, fingers open\n"
+       "     around the glass.",
+       "robots/yumi.urdf",
+       "yumi",
+       R"(X="0.0" Y="-0.3" Z="0.75" WX="0" WY="0" WZ="1" TH="1.5707963")",
+       "robots/controls/yumi_left_arm_open.cntr",
+       "0.2765 0.6264 0.7797 0.7341 0.5461 0.8343 0.4128",
+       "normalized left arm axes 1, 2, 7, 3, 4, 5, 6: the left gripper level and pointing at\n"
+       "             the glass, TCP at (-0.1, -0.06, 1.0), 30 cm from the pre-grasp; the right "
+       "arm folded away.",
+       "yumi_left_tcp",
+       "objects/slim_glass.urdf",
+       "glass",
+       "0.825",
+       {-1000, 2300},
+       200,
+       "0.005",
+       400,
+       "1 0 0",
+       660,
+       450,
+       600,
+       "0.066 0.04 0.105",
+       "0 0 0.0075",
+       {-5000, 4000, -700, 3470},
+       {{-2500, 2500, -5000, -1000}, {2690, 3310, -930, -60}},
+       "-0.55 -0.1 0.77",
+       "0.55 0.4 1.2"},
+  };
+  return setups;
+}
+
+const SideSetup& findSideSetup(const std::string& robot) {
+  for (const SideSetup& setup : sideSetups())
+    if (robot == setup.key) return setup;
+  throw std::invalid_argument(
+      fmt::format("unknown robot '{}'; expected {}", robot, fmt::join(clutterRobots(), " or ")));
+}
+
+Point pregrasp(const SideSetup& s) { return {s.target.x, s.target.y - s.pregraspOffset}; }
+
+/// The approach corridor and the free space, as one rectangle: the strip the open gripper
+/// sweeps moving at grasp height along +y from the near edge of the zone to the pre-grasp,
+/// then through the free space to past the target's centre.
+Rect corridor(const SideSetup& s) {
+  const Point goal = pregrasp(s);
+  return {goal.x - s.freeWidth / 2, goal.x + s.freeWidth / 2, s.zone.ymin, goal.y + s.freeAhead};
+}
+
+Units distanceSquared(Point p, const Rect& r) {
+  const Units dx = std::max<Units>({r.xmin - p.x, 0, p.x - r.xmax});
+  const Units dy = std::max<Units>({r.ymin - p.y, 0, p.y - r.ymax});
+  return squared(dx) + squared(dy);
+}
+
+/// The kinds of the objects in order: cans, or with --mix one bottle then boxes and cans
+/// alternating, as in the paper's KUKA scene.
+std::vector<std::string> objectKinds(const ClutterOptions& options) {
+  std::vector<std::string> kinds;
+  for (int i = 0; i < options.objects; ++i)
+    kinds.push_back(!options.mix ? "can" : i == 0 ? "bottle" : i % 2 ? "box" : "can");
+  return kinds;
+}
+
+class SidePlacer {
+ public:
+  SidePlacer(const SideSetup& setup, const ClutterOptions& options)
+      : setup_(setup), gap_(static_cast<Units>(options.gap / kUnit + 0.5)) {}
+
+  bool fits(Point p, Units radius) const {
+    const Rect& z = setup_.zone;
+    if (p.x < z.xmin || p.x > z.xmax || p.y < z.ymin || p.y > z.ymax) return false;
+    if (distanceSquared(p, setup_.target) < squared(radius + setup_.targetRadius + gap_))
+      return false;
+    for (const Rect& box : setup_.keepOuts)
+      if (distanceSquared(p, box) < squared(radius + gap_)) return false;
+    for (const SceneObject& o : objects_) {
+      const Units other = objectModel(o.kind).radius;
+      if (distanceSquared(p, Point{o.x, o.y}) < squared(radius + other + gap_)) return false;
+    }
+    return true;
+  }
+
+  bool isBlocker(Point p, Units radius) const {
+    return distanceSquared(p, corridor(setup_)) < squared(radius);
+  }
+
+  /// Places an object with its centre drawn from `area`; false if it never fits.
+  bool place(std::mt19937_64& random, const std::string& kind, const Rect& area) {
+    const Units radius = objectModel(kind).radius;
+    for (int attempt = 0; attempt < kAttemptsPerObject; ++attempt) {
+      const Point p{uniform(random, area.xmin, area.xmax), uniform(random, area.ymin, area.ymax)};
+      if (!fits(p, radius)) continue;
+      objects_.push_back({kind, p.x, p.y, isBlocker(p, radius)});
+      return true;
+    }
+    return false;
+  }
+
+  const std::vector<SceneObject>& objects() const { return objects_; }
+
+ private:
+  const SideSetup& setup_;
+  Units gap_;
+  std::vector<SceneObject> objects_;
+};
+
+/// Where the first blocker's centre is drawn: on the pre-grasp, in the free space.
+Rect onPregrasp(const SideSetup& s) {
+  const Point goal = pregrasp(s);
+  return {goal.x - kFreeSpaceSlack, goal.x + kFreeSpaceSlack, goal.y - s.freeBehind,
+          goal.y + kFreeSpaceSlack};
+}
+
+/// Where the other blockers' centres are drawn: the corridor, widened so that an object
+/// whose footprint only grazes it counts.
+Rect aroundCorridor(const SideSetup& s, Units radius) {
+  const Rect c = corridor(s);
+  return {c.xmin - radius + 1, c.xmax + radius - 1, c.ymin, c.ymax};
+}
+
+void checkOptions(const ClutterOptions& options) {
+  if (options.objects < 0 || options.objects > kMaxClutterObjects)
+    throw std::invalid_argument(fmt::format("the number of objects must be in [0, {}], got {}",
+                                            kMaxClutterObjects, options.objects));
+  if (options.target != "glass")
+    throw std::invalid_argument(
+        fmt::format("unknown target '{}'; the generator knows 'glass'", options.target));
+  if (!(options.gap >= 0.0 && options.gap <= 0.2))
+    throw std::invalid_argument(
+        fmt::format("the gap between objects must be in [0, 0.2] m, got {}", options.gap));
+}
+
+}  // namespace
+
+int requiredBlockers(int objects) { return objects >= kBlockersFrom ? (objects + 4) / 5 : 0; }
+
+std::vector<SceneObject> placeSideGraspClutter(const ClutterOptions& options) {
+  checkOptions(options);
+  const SideSetup& setup = findSideSetup(options.robot);
+  const std::vector<std::string> kinds = objectKinds(options);
+  const int blockers = requiredBlockers(options.objects);
+
+  std::mt19937_64 random(options.seed);
+  SidePlacer placer(setup, options);
+  for (int i = 0; i < options.objects; ++i) {
+    const Units radius = objectModel(kinds[i]).radius;
+    const Rect area = i >= blockers ? setup.zone
+                      : i == 0      ? onPregrasp(setup)
+                                    : aroundCorridor(setup, radius);
+    if (placer.place(random, kinds[i], area)) continue;
+    throw std::invalid_argument(fmt::format(
+        "only {} of {} objects fit {} (at least {:g} m apart) with the {}; ask for at most {} "
+        "objects, or a smaller --gap",
+        i, options.objects,
+        i < blockers ? "with the required blockers on the approach" : "in the zone", options.gap,
+        options.robot, i));
+  }
+  return placer.objects();
+}
+
+std::string sideGraspProblemXml(const ClutterOptions& options,
+                                const std::vector<SceneObject>& objects,
+                                const std::string& problemName, const std::string& commandLine) {
+  const SideSetup& s = findSideSetup(options.robot);
+  const Point goal = pregrasp(s);
+  const Rect c = corridor(s);
+  const auto blockers =
+      std::count_if(objects.begin(), objects.end(), [](auto& o) { return o.blocker; });
+
+  std::string xml = "<?xml version=\"1.0\"?>\n";
+  xml += fmt::format(
+      "<!-- {}\n"
+      "     {} movable objects stand at random, without overlap, in a fixed zone between the "
+      "robot\n"
+      "     and the target and around it; {} of them on the pre-grasp or in the approach corridor\n"
+      "     (docs/scenes.md).\n"
+      "     Made by: {} -->\n",
+      s.description, objects.size(), blockers, escapeComment(commandLine));
+  xml += fmt::format("<Problem name=\"{}\">\n", escapeAttribute(problemName));
+  xml += fmt::format("  <Robot robot=\"{}\" name=\"{}\">\n", s.urdf, s.name);
+  xml += fmt::format("    <Home {}/>\n", s.home);
+  xml += "  </Robot>\n";
+  xml += fmt::format("  <Controls robot=\"{}\"/>\n\n", s.controls);
+  xml +=
+      "  <Obstacle obstacle=\"objects/table.urdf\" role=\"fixed\">\n"
+      "    <KauthamName name=\"table\"/>\n"
+      "    <Home X=\"0\" Y=\"0\" Z=\"0.75\"/>\n"
+      "  </Obstacle>\n";
+  xml += fmt::format(
+      "  <Obstacle obstacle=\"{}\" role=\"target\">\n"
+      "    <KauthamName name=\"{}\"/>\n"
+      "    <Home X=\"{}\" Y=\"{}\" Z=\"{}\"/>\n"
+      "  </Obstacle>\n",
+      s.targetUrdf, s.targetName, metres(s.target.x), metres(s.target.y), s.targetZ);
+  std::vector<int> counts(3, 0);
+  for (const SceneObject& o : objects) {
+    const ObjectModel& model = objectModel(o.kind);
+    const int number = ++counts[o.kind == "can" ? 0 : o.kind == "box" ? 1 : 2];
+    xml += fmt::format(
+        "  <Obstacle obstacle=\"{}\" role=\"movable\">\n"
+        "    <KauthamName name=\"{}{}\"/>\n"
+        "    <Home X=\"{}\" Y=\"{}\" Z=\"{}\"/>\n"
+        "  </Obstacle>\n",
+        model.urdf, o.kind, number, metres(o.x), metres(o.y), model.z);
+  }
+  xml +=
+      "\n"
+      "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "
+      "solverIterations=\"20\"\n"
+      "           friction=\"0.5\" erp=\"0.2\" cfm=\"1e-5\"/>\n"
+      "  <!-- what is known only roughly: object poses to 5 mm and 0.05 rad, friction to 0.05,\n"
+      "       joint speeds to 0.2 % of their limits -->\n"
+      "  <Uncertainty x=\"0.005\" y=\"0.005\" yaw=\"0.05\" friction=\"0.05\" "
+      "control=\"0.002\"/>\n"
+      "  <Interaction support=\"table\" maxObjectSpeed=\"1.0\" maxDisplacement=\"0.3\" "
+      "maxTilt=\"0.35\"\n"
+      "               targetTolerance=\"0.005\"/>\n";
+  xml += fmt::format("  <Workspace min=\"{}\" max=\"{}\"/>\n\n", s.workspaceMin, s.workspaceMax);
+  xml +=
+      "  <Planner>\n"
+      "    <Parameters>\n"
+      "      <Name>p-KPIECE</Name>\n"
+      "      <Parameter name=\"_Max Planning Time\">60</Parameter>\n"
+      "      <Parameter name=\"PropagationStepSize\">0.05</Parameter>\n"
+      "      <Parameter name=\"Min Control Steps\">2</Parameter>\n"
+      "      <Parameter name=\"Max Control Steps\">20</Parameter>\n"
+      "      <Parameter name=\"Goal Bias\">0.2</Parameter>\n"
+      "    </Parameters>\n"
+      "    <Queries>\n"
+      "      <Query name=\"pregrasp\">\n";
+  xml += fmt::format("        <!-- {} -->\n", s.initComment);
+  xml += fmt::format("        <Init>{}</Init>\n", s.init);
+  xml += fmt::format(
+      "        <!-- side pre-grasp: the TCP at ({}, {}, grasp height), {} m before the target's\n"
+      "             centre, its +z (the approach) along +y within 0.3 rad, the fingers' axis "
+      "level;\n"
+      "             no other object in the free space between the open fingers and on to the "
+      "grasp;\n"
+      "             the approach corridor is the {} m before the pre-grasp -->\n",
+      metres(goal.x), metres(goal.y), metres(s.pregraspOffset), metres(goal.y - c.ymin));
+  xml += fmt::format(
+      "        <GoalRegion link=\"{}\" relativeTo=\"{}\" offset=\"0 -{} {}\" tolerance=\"0.02\"\n"
+      "                    approach=\"0 1 0\" approachTolerance=\"0.3\" levelAxis=\"{}\"\n"
+      "                    freeSpace=\"{}\" freeSpaceCenter=\"{}\"\n"
+      "                    approachCorridor=\"{}\"/>\n",
+      s.goalLink, s.targetName, metres(s.pregraspOffset), s.graspZOffset, s.levelAxis, s.freeSpace,
+      s.freeSpaceCenter, metres(goal.y - c.ymin));
+  xml +=
+      "      </Query>\n"
+      "    </Queries>\n"
+      "  </Planner>\n"
+      "</Problem>\n";
+  return xml;
+}
+
+}  // namespace kautham::apps

@@ -1,0 +1,87 @@
+#include "kautham/physics/GoalFreeSpace.h"
+
+#include <cmath>
+#include <type_traits>
+
+namespace kautham::physics {
+
+namespace {
+
+/// Whether a point given in a shape's own frame lies inside it.
+bool inside(const core::Shape& shape, const Eigen::Vector3d& p) {
+  return std::visit(
+      [&p](const auto& s) {
+        using S = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<S, core::Box>) {
+          return (p.cwiseAbs() - 0.5 * s.size).maxCoeff() <= 0.0;
+        } else if constexpr (std::is_same_v<S, core::Cylinder>) {
+          return p.head<2>().squaredNorm() <= s.radius * s.radius &&
+                 std::abs(p.z()) <= 0.5 * s.length;
+        } else if constexpr (std::is_same_v<S, core::Sphere>) {
+          return p.squaredNorm() <= s.radius * s.radius;
+        } else {
+          return s.hull().contains(p);  // moving meshes collide as their hull
+        }
+      },
+      shape);
+}
+
+/// Radius of a ball about a shape's origin that holds the whole shape.
+double boundingRadius(const core::Shape& shape) {
+  const Eigen::AlignedBox3d box = core::boundingBox(shape, Eigen::Isometry3d::Identity());
+  return std::max(box.min().norm(), box.max().norm());
+}
+
+}  // namespace
+
+GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Eigen::Vector3d& size,
+                             const Eigen::Vector3d& center)
+    : layout_(std::move(layout)), center_(center), boundingRadius_(0.5 * size.norm()) {
+  Eigen::Vector3i count;
+  for (int a = 0; a < 3; ++a) count[a] = 1 + static_cast<int>(std::ceil(size[a] / kSpacing));
+  for (int i = 0; i < count.x(); ++i)
+    for (int j = 0; j < count.y(); ++j)
+      for (int k = 0; k < count.z(); ++k) {
+        const Eigen::Vector3d fraction(i / double(count.x() - 1), j / double(count.y() - 1),
+                                       k / double(count.z() - 1));
+        grid_.push_back(center + (fraction.array() - 0.5).matrix().cwiseProduct(size));
+      }
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
+    if (layout_->bodies[b].role == BodyRole::Movable) movable_.push_back(b);
+}
+
+std::vector<std::string> GoalFreeSpace::occupants(const double* state,
+                                                  const Eigen::Isometry3d& goalLink) const {
+  std::vector<Eigen::Vector3d> worldPoints;
+  worldPoints.reserve(grid_.size());
+  for (const Eigen::Vector3d& p : grid_) worldPoints.push_back(goalLink * p);
+  std::vector<std::string> names;
+  for (std::size_t body : movable_)
+    if (occupies(body, state, worldPoints, goalLink * center_))
+      names.push_back(layout_->bodies[body].name);
+  return names;
+}
+
+bool GoalFreeSpace::isFree(const double* state, const Eigen::Isometry3d& goalLink) const {
+  return occupants(state, goalLink).empty();
+}
+
+bool GoalFreeSpace::occupies(std::size_t body, const double* state,
+                             const std::vector<Eigen::Vector3d>& worldPoints,
+                             const Eigen::Vector3d& boxCentre) const {
+  Eigen::Isometry3d bodyPose = Eigen::Isometry3d::Identity();
+  bodyPose.linear() = WorldLayout::orientation(state, body).normalized().toRotationMatrix();
+  bodyPose.translation() = WorldLayout::position(state, body);
+  for (const ShapeInfo& shape : layout_->shapes) {
+    if (shape.body != static_cast<int>(body)) continue;
+    const Eigen::Isometry3d toShape = (bodyPose * shape.pose).inverse();
+    // Far shapes are skipped whole: most objects are nowhere near the gripper.
+    const double reach = boundingRadius(shape.shape) + boundingRadius_;
+    if ((toShape * boxCentre).norm() > reach) continue;
+    for (const Eigen::Vector3d& p : worldPoints)
+      if (inside(shape.shape, toShape * p)) return true;
+  }
+  return false;
+}
+
+}  // namespace kautham::physics
