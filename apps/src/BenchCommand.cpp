@@ -76,9 +76,8 @@ std::vector<json> mergedResults(const std::vector<fs::path>& folders) {
 /// "Crash: plan killed by signal 9 (Killed)" or "Exact solution: validate exit code 1".
 std::string whyFailed(const json& result) {
   const json& validation = result.at("validation");
-  const bool planEnded = result.at("plan").value("exit", "") == "exit code 0" ||
-                         result.at("plan").value("exit", "") == "exit code 1";
-  if (planEnded && validation.is_object())
+  const bool planWritten = result.at("plan").at("file").is_string();
+  if (planWritten && validation.is_object())
     return result.value("status", "") + ": validate " + validation.value("exit", "");
   return result.value("status", "") + ": plan " + result.at("plan").value("exit", "");
 }

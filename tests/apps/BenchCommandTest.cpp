@@ -283,14 +283,15 @@ std::vector<pid_t> processesMentioning(const std::string& text) {
   return pids;
 }
 
-/// Waits up to 30 s for bench's plan children to appear.
-std::vector<pid_t> waitForPlanners(const std::string& text) {
-  for (int i = 0; i < 300; ++i) {
-    std::vector<pid_t> pids = processesMentioning(text);
-    if (!pids.empty()) return pids;
+/// Waits up to 30 s until `count` of bench's plan children run (a child shows its own command
+/// line only once it has exec'd).
+std::vector<pid_t> waitForPlanners(const std::string& text, std::size_t count) {
+  std::vector<pid_t> pids;
+  for (int i = 0; i < 300 && pids.size() < count; ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    pids = processesMentioning(text);
   }
-  return {};
+  return pids;
 }
 
 int waitExitCode(pid_t pid) {
@@ -310,7 +311,7 @@ TEST_F(BenchCommandTest, InterruptKillsTheRunsAndLeavesNoResult) {
   std::vector<std::string> arguments = kLongRun;
   arguments.insert(arguments.end(), {"-o", (folder / "out").string()});
   const pid_t bench = startKautham(arguments, folder / "bench.txt");
-  ASSERT_EQ(waitForPlanners(folder.string()).size(), 2u);
+  ASSERT_EQ(waitForPlanners(folder.string(), 2).size(), 2u);
   kill(bench, SIGINT);
   EXPECT_EQ(waitExitCode(bench), 130) << test::readFile(folder / "bench.txt");
   EXPECT_NE(test::readFile(folder / "bench.txt").find("interrupted: 0 of 2 runs done"),
@@ -326,7 +327,7 @@ TEST_F(BenchCommandTest, CrashedRunIsRecordedAsFailed) {
   arguments[5] = "1";  // one run
   arguments.insert(arguments.end(), {"-o", (folder / "out").string()});
   const pid_t bench = startKautham(arguments, folder / "bench.txt");
-  const std::vector<pid_t> planners = waitForPlanners(folder.string());
+  const std::vector<pid_t> planners = waitForPlanners(folder.string(), 1);
   ASSERT_EQ(planners.size(), 1u);
   kill(planners.front(), SIGSEGV);
   EXPECT_EQ(waitExitCode(bench), 1) << test::readFile(folder / "bench.txt");
