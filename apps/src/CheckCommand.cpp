@@ -6,6 +6,7 @@
 #include <fmt/ranges.h>
 
 #include "Commands.h"
+#include "SideGraspClutter.h"
 #include "StartCheck.h"
 #include "kautham/core/ApproachCorridor.h"
 #include "kautham/core/ProblemLoader.h"
@@ -142,7 +143,7 @@ void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region
     const core::GoalRegion::FreeSpace& box = *region.freeSpace;
     fmt::print(
         "            free space: a {:g} x {:g} x {:g} m box at ({:g}, {:g}, {:g}) in the goal "
-        "link's frame holds no movable object\n",
+        "link's frame must hold no movable object\n",
         box.size.x(), box.size.y(), box.size.z(), box.center.x(), box.center.y(), box.center.z());
   }
   if (region.approachCorridor <= 0.0) return;
@@ -150,12 +151,15 @@ void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region
   int movable = 0;
   for (const core::ObjectInstance& object : problem.objects)
     movable += object.role == core::ObjectRole::Movable;
-  const int needed = movable >= 10 ? (movable + 4) / 5 : 0;
+  const int needed = requiredBlockers(movable);
+  const bool tooFew = static_cast<int>(blockers.size()) < needed;
   fmt::print(
       "blockers    {} of {} movable objects on the pre-grasp or in the {:g} m approach "
       "corridor{}{}{}\n",
       blockers.size(), movable, region.approachCorridor,
-      needed > 0 ? fmt::format(" (the suite's rule asks for at least {})", needed) : "",
+      needed > 0 ? fmt::format(" (the suite's rule asks for at least {}{})", needed,
+                               tooFew ? ": too few" : "")
+                 : "",
       blockers.empty() ? "" : ": ", fmt::join(blockers, ", "));
 }
 

@@ -245,7 +245,7 @@ std::vector<CanPlacement> placeClutter(const ClutterOptions& options) {
 std::string clutterCommandLine(const ClutterOptions& options, const std::string& outputName) {
   std::string line = fmt::format("kautham generate clutter -r {} -n {} -s {}", options.robot,
                                  options.objects, options.seed);
-  if (options.gap != ClutterOptions().gap) line += fmt::format(" -g {:g}", options.gap);
+  if (options.gap != ClutterOptions().gap) line += fmt::format(" -g {}", options.gap);
   if (options.layout != ClutterOptions().layout) line += " -l " + options.layout;
   if (options.mix) line += " -m";
   return line + " -o " + outputName;

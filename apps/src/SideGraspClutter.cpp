@@ -16,7 +16,10 @@ using namespace placement;
 
 constexpr int kBlockersFrom = 10;          // from this many objects on, some block the approach
 constexpr int kAttemptsPerObject = 20000;  // failed samples before an object is given up
-constexpr Units kFreeSpaceSlack = 200;     // the first blocker stands within 2 cm of the pre-grasp
+// The first blocker's centre is drawn within 2 cm across the pre-grasp and from the finger
+// roots to 2 cm past the TCP; the target's clearance rejects the part ahead, so it stands
+// 2-6 cm (KUKA) or 2-4.5 cm (YuMi) behind the pre-grasp, in the free space.
+constexpr Units kFreeSpaceSlack = 200;
 
 /// A rectangle of the table, axis-aligned.
 struct Rect {
@@ -27,15 +30,16 @@ struct Rect {
 struct ObjectModel {
   const char* kind;
   const char* urdf;
-  Units radius;   ///< of a disc that holds its footprint (a box's circumscribed circle)
-  const char* z;  ///< its frame's height when it stands on the table
+  Units radius;    ///< of a disc that holds its footprint (a box's circumscribed circle)
+  Units halfSide;  ///< of its footprint's bounding square (upright, unturned): what check uses
+  const char* z;   ///< its frame's height when it stands on the table
 };
 
 const ObjectModel& objectModel(const std::string& kind) {
   static const ObjectModel models[] = {
-      {"can", "objects/can.urdf", 330, "0.811"},
-      {"box", "objects/box.urdf", 425, "0.80"},
-      {"bottle", "objects/bottle.urdf", 350, "0.875"},
+      {"can", "objects/can.urdf", 330, 330, "0.811"},
+      {"box", "objects/box.urdf", 425, 300, "0.80"},
+      {"bottle", "objects/bottle.urdf", 350, 350, "0.875"},
   };
   for (const ObjectModel& model : models)
     if (kind == model.kind) return model;
@@ -60,16 +64,14 @@ struct SideSetup {
   const char* targetZ;
   Point target;
   Units targetRadius;
-  const char* graspZOffset;     ///< grasp height above the target's frame, m
-  Units pregraspOffset;         ///< the TCP's distance before the target's centre, along +y
-  const char* levelAxis;        ///< the fingers' opening axis in the TCP frame
-  Units freeWidth;              ///< the free space's width across the approach (fingers and gap)
-  Units freeBehind;             ///< the free space reaches this far behind the TCP (finger length)
-  Units freeAhead;              ///< and this far ahead (past the target's centre)
-  const char* freeSpace;        ///< the same box, as the goal's attribute: size ...
-  const char* freeSpaceCenter;  ///< ... and centre, in the TCP frame
-  Rect zone;                    ///< where object centres may be
-  std::vector<Rect> keepOuts;   ///< footprints of the robot's low parts at the start
+  const char* graspZOffset;    ///< grasp height above the target's frame, m
+  Units pregraspOffset;        ///< the TCP's distance before the target's centre, along +y
+  const char* levelAxis;       ///< the fingers' opening axis in the TCP frame
+  Units freeWidth;             ///< the free space's width across the approach (fingers and gap)
+  Units freeBehind;            ///< the free space reaches this far behind the TCP (finger length)
+  Units freeAhead;             ///< and this far ahead (past the target's centre)
+  Rect zone;                   ///< where object centres may be
+  std::vector<Rect> keepOuts;  ///< footprints of the robot's low parts at the start
   const char* workspaceMin;
   const char* workspaceMax;
 };
@@ -85,7 +87,7 @@ const std::vector<SideSetup>& sideSetups() {
        R"(X="0.0" Y="-0.5" Z="1.0" WX="0" WY="0" WZ="1" TH="1.5707963")",
        "robots/controls/kuka_lwr4_arm_open.cntr",
        "0.5 0.7387 0.5 0.0225 0.5 0.1586 0.5",
-       "A2 = +60 deg, A4 = -115 deg, A6 = -82 deg: the arm is drawn back and up, the gripper\n"
+       "A2 = +57 deg, A4 = -115 deg, A6 = -82 deg: the arm is drawn back and up, the gripper\n"
        "             level and pointing at the target; TCP at (0, 0.06, 1.14), 32 cm from the "
        "pre-grasp.",
        "kuka_tcp",
@@ -100,8 +102,6 @@ const std::vector<SideSetup>& sideSetups() {
        1200,
        600,
        950,
-       "0.04 0.12 0.155",
-       "0 0 0.0175",
        {-3000, 3000, -3200, 3470},
        {},
        "-0.5 -0.4 0.77",
@@ -130,8 +130,6 @@ const std::vector<SideSetup>& sideSetups() {
        660,
        450,
        600,
-       "0.066 0.04 0.105",
-       "0 0 0.0075",
        {-5000, 4000, -700, 3470},
        {{-2500, 2500, -5000, -1000}, {2690, 3310, -930, -60}},
        "-0.55 -0.1 0.77",
@@ -148,6 +146,20 @@ const SideSetup& findSideSetup(const std::string& robot) {
 }
 
 Point pregrasp(const SideSetup& s) { return {s.target.x, s.target.y - s.pregraspOffset}; }
+
+constexpr Units kFreeHeight =
+    400;  // the free space's height: the fingers' width and 1 cm each side
+
+/// The goal's freeSpace and freeSpaceCenter attributes: the box in the TCP frame, across the
+/// fingers along the level axis, kFreeHeight along the other, from the finger roots to past
+/// the target's centre along +z.
+std::string freeSpaceAttributes(const SideSetup& s) {
+  const bool acrossIsY = std::string(s.levelAxis) == "0 1 0";
+  const Units x = acrossIsY ? kFreeHeight : s.freeWidth;
+  const Units y = acrossIsY ? s.freeWidth : kFreeHeight;
+  return fmt::format("freeSpace=\"{} {} {}\" freeSpaceCenter=\"0 0 {}\"", metres(x), metres(y),
+                     metres(s.freeBehind + s.freeAhead), metres((s.freeAhead - s.freeBehind) / 2));
+}
 
 /// The approach corridor and the free space, as one rectangle: the strip the open gripper
 /// sweeps moving at grasp height along +y from the near edge of the zone to the pre-grasp,
@@ -191,8 +203,12 @@ class SidePlacer {
     return true;
   }
 
-  bool isBlocker(Point p, Units radius) const {
-    return distanceSquared(p, corridor(setup_)) < squared(radius);
+  /// The footprint's bounding square overlaps the corridor: the rule of `kautham check`
+  /// (core::approachBlockers), so that both count the same objects.
+  bool isBlocker(Point p, Units halfSide) const {
+    const Rect c = corridor(setup_);
+    return p.x - halfSide < c.xmax && c.xmin < p.x + halfSide && p.y - halfSide < c.ymax &&
+           c.ymin < p.y + halfSide;
   }
 
   /// Places an object with its centre drawn from `area`; false if it never fits.
@@ -201,7 +217,7 @@ class SidePlacer {
     for (int attempt = 0; attempt < kAttemptsPerObject; ++attempt) {
       const Point p{uniform(random, area.xmin, area.xmax), uniform(random, area.ymin, area.ymax)};
       if (!fits(p, radius)) continue;
-      objects_.push_back({kind, p.x, p.y, isBlocker(p, radius)});
+      objects_.push_back({kind, p.x, p.y, isBlocker(p, objectModel(kind).halfSide)});
       return true;
     }
     return false;
@@ -223,10 +239,10 @@ Rect onPregrasp(const SideSetup& s) {
 }
 
 /// Where the other blockers' centres are drawn: the corridor, widened so that an object
-/// whose footprint only grazes it counts.
-Rect aroundCorridor(const SideSetup& s, Units radius) {
+/// whose footprint only grazes it still counts.
+Rect aroundCorridor(const SideSetup& s, Units halfSide) {
   const Rect c = corridor(s);
-  return {c.xmin - radius + 1, c.xmax + radius - 1, c.ymin, c.ymax};
+  return {c.xmin - halfSide + 1, c.xmax + halfSide - 1, c.ymin, c.ymax};
 }
 
 void checkOptions(const ClutterOptions& options) {
@@ -239,6 +255,10 @@ void checkOptions(const ClutterOptions& options) {
   if (!(options.gap >= 0.0 && options.gap <= 0.2))
     throw std::invalid_argument(
         fmt::format("the gap between objects must be in [0, 0.2] m, got {}", options.gap));
+  // The bottle stands as high as the YuMi's gripper at the start, whose keep-outs are sized
+  // for cans.
+  if (options.mix && options.robot != "kuka")
+    throw std::invalid_argument("--mix is for the KUKA; the YuMi's scenes hold cans only");
 }
 
 }  // namespace
@@ -254,17 +274,19 @@ std::vector<SceneObject> placeSideGraspClutter(const ClutterOptions& options) {
   std::mt19937_64 random(options.seed);
   SidePlacer placer(setup, options);
   for (int i = 0; i < options.objects; ++i) {
-    const Units radius = objectModel(kinds[i]).radius;
     const Rect area = i >= blockers ? setup.zone
                       : i == 0      ? onPregrasp(setup)
-                                    : aroundCorridor(setup, radius);
+                                    : aroundCorridor(setup, objectModel(kinds[i]).halfSide);
     if (placer.place(random, kinds[i], area)) continue;
+    if (i < blockers)
+      throw std::invalid_argument(fmt::format(
+          "only {} of the {} blockers that {} objects need fit on the {}'s approach (at least "
+          "{:g} m apart); use a smaller --gap, or fewer than {} objects",
+          i, blockers, options.objects, options.robot, options.gap, kBlockersFrom));
     throw std::invalid_argument(fmt::format(
-        "only {} of {} objects fit {} (at least {:g} m apart) with the {}; ask for at most {} "
-        "objects, or a smaller --gap",
-        i, options.objects,
-        i < blockers ? "with the required blockers on the approach" : "in the zone", options.gap,
-        options.robot, i));
+        "only {} of {} objects fit in the zone with the {} (at least {:g} m apart); ask for at "
+        "most {} objects, or a smaller --gap",
+        i, options.objects, options.robot, options.gap, i));
   }
   return placer.objects();
 }
@@ -352,10 +374,10 @@ std::string sideGraspProblemXml(const ClutterOptions& options,
   xml += fmt::format(
       "        <GoalRegion link=\"{}\" relativeTo=\"{}\" offset=\"0 -{} {}\" tolerance=\"0.02\"\n"
       "                    approach=\"0 1 0\" approachTolerance=\"0.3\" levelAxis=\"{}\"\n"
-      "                    freeSpace=\"{}\" freeSpaceCenter=\"{}\"\n"
+      "                    {}\n"
       "                    approachCorridor=\"{}\"/>\n",
-      s.goalLink, s.targetName, metres(s.pregraspOffset), s.graspZOffset, s.levelAxis, s.freeSpace,
-      s.freeSpaceCenter, metres(goal.y - c.ymin));
+      s.goalLink, s.targetName, metres(s.pregraspOffset), s.graspZOffset, s.levelAxis,
+      freeSpaceAttributes(s), metres(goal.y - c.ymin));
   xml +=
       "      </Query>\n"
       "    </Queries>\n"

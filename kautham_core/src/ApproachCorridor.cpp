@@ -39,7 +39,9 @@ std::vector<std::string> approachBlockers(const Problem& problem, const GoalRegi
   const double halfWidth = 0.5 * goal.levelAxis->cwiseAbs().dot(free.size);
   const double front = free.center.z() + 0.5 * free.size.z();  // the goal link's +z: approach
   const Interval strip{-goal.approachCorridor, front};
-  const Interval width{-halfWidth, halfWidth};
+  // The free space may sit off the goal link's axis across the fingers.
+  const double offset = goal.levelAxis->dot(free.center);
+  const Interval width{offset - halfWidth, offset + halfWidth};
   const Eigen::Vector2d origin = problem.goalPosition(goal).head<2>();
 
   std::vector<std::string> names;

@@ -530,15 +530,18 @@ class ProblemReader {
     if (xml_.optionalText(e, "levelAxis")) {
       if (!goal.approach) xml_.fail(e, "levelAxis needs an approach=\"x y z\" direction");
       const Eigen::Vector3d axis = xml_.vector3(e, "levelAxis", {});
-      if (!(axis.norm() > 1e-9)) xml_.fail(e, "levelAxis must be a non-zero direction");
+      if (!(axis.norm() > 1e-9) || !std::isfinite(axis.squaredNorm()))
+        xml_.fail(e, "levelAxis must be a non-zero direction of moderate length, e.g. \"0 1 0\"");
       goal.levelAxis = axis.normalized();
     }
     if (xml_.optionalText(e, "freeSpace")) {
       GoalRegion::FreeSpace box;
       box.size = xml_.vector3(e, "freeSpace", {});
       if (!(box.size.minCoeff() > 0.0) || !(box.size.maxCoeff() < 1.0))
-        xml_.fail(e, "freeSpace must be three box sides in (0, 1) m, e.g. \"0.04 0.12 0.19\"");
+        xml_.fail(e, "freeSpace must be three box sides in (0, 1) m, e.g. \"0.04 0.12 0.155\"");
       box.center = xml_.vector3(e, "freeSpaceCenter", box.center);
+      if (!(box.center.cwiseAbs().maxCoeff() < 1.0))
+        xml_.fail(e, "freeSpaceCenter must lie within 1 m of the goal link, e.g. \"0 0 0.0175\"");
       goal.freeSpace = box;
     } else if (xml_.optionalText(e, "freeSpaceCenter")) {
       xml_.fail(e, "freeSpaceCenter needs a freeSpace=\"x y z\" box size");

@@ -1,6 +1,8 @@
 #include "kautham/physics/GoalFreeSpace.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <type_traits>
 
 namespace kautham::physics {
@@ -26,10 +28,11 @@ bool inside(const core::Shape& shape, const Eigen::Vector3d& p) {
       shape);
 }
 
-/// Radius of a ball about a shape's origin that holds the whole shape.
+/// Radius of a ball about a shape's origin that holds the whole shape: the distance to the
+/// farthest corner of its bounding box.
 double boundingRadius(const core::Shape& shape) {
   const Eigen::AlignedBox3d box = core::boundingBox(shape, Eigen::Isometry3d::Identity());
-  return std::max(box.min().norm(), box.max().norm());
+  return box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).norm();
 }
 
 }  // namespace
@@ -37,8 +40,12 @@ double boundingRadius(const core::Shape& shape) {
 GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Eigen::Vector3d& size,
                              const Eigen::Vector3d& center)
     : layout_(std::move(layout)), center_(center), boundingRadius_(0.5 * size.norm()) {
+  if (!(size.minCoeff() > 0.0) || !size.allFinite())
+    throw std::invalid_argument("a goal's free space needs three positive box sides");
   Eigen::Vector3i count;
-  for (int a = 0; a < 3; ++a) count[a] = 1 + static_cast<int>(std::ceil(size[a] / kSpacing));
+  // At least two points per axis (both faces), at most kSpacing apart.
+  for (int a = 0; a < 3; ++a)
+    count[a] = std::max(2, 1 + static_cast<int>(std::ceil(size[a] / kSpacing)));
   for (int i = 0; i < count.x(); ++i)
     for (int j = 0; j < count.y(); ++j)
       for (int k = 0; k < count.z(); ++k) {
@@ -48,6 +55,8 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
       }
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
     if (layout_->bodies[b].role == BodyRole::Movable) movable_.push_back(b);
+  for (const ShapeInfo& shape : layout_->shapes)
+    shapeRadius_.push_back(boundingRadius(shape.shape));
 }
 
 std::vector<std::string> GoalFreeSpace::occupants(const double* state,
@@ -72,11 +81,12 @@ bool GoalFreeSpace::occupies(std::size_t body, const double* state,
   Eigen::Isometry3d bodyPose = Eigen::Isometry3d::Identity();
   bodyPose.linear() = WorldLayout::orientation(state, body).normalized().toRotationMatrix();
   bodyPose.translation() = WorldLayout::position(state, body);
-  for (const ShapeInfo& shape : layout_->shapes) {
+  for (std::size_t s = 0; s < layout_->shapes.size(); ++s) {
+    const ShapeInfo& shape = layout_->shapes[s];
     if (shape.body != static_cast<int>(body)) continue;
     const Eigen::Isometry3d toShape = (bodyPose * shape.pose).inverse();
     // Far shapes are skipped whole: most objects are nowhere near the gripper.
-    const double reach = boundingRadius(shape.shape) + boundingRadius_;
+    const double reach = shapeRadius_[s] + boundingRadius_;
     if ((toShape * boxCentre).norm() > reach) continue;
     for (const Eigen::Vector3d& p : worldPoints)
       if (inside(shape.shape, toShape * p)) return true;

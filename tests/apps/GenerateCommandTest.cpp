@@ -227,7 +227,7 @@ TEST_F(GenerateCommandTest, BadArgumentsExitTwo) {
 }
 
 /// The dense suite's promises (docs/scenes.md): the same bytes for the same arguments, objects
-/// apart and in the zone, ceil(N/5) blockers from 10 objects on as `kautham check` counts them
+/// apart, ceil(N/5) blockers from 10 objects on as `kautham check` counts them
 /// (core::approachBlockers, the goal's corridor and free space), and a valid start.
 TEST_F(GenerateCommandTest, SideScenesAreReproducibleAndBlockTheApproach) {
   for (const char* robot : {"kuka", "yumi"})
@@ -268,6 +268,24 @@ TEST_F(GenerateCommandTest, SideScenesAreReproducibleAndBlockTheApproach) {
     }
 }
 
+/// `generate` and `check` count the same blockers, boxes (whose circumscribed circle is wider
+/// than their footprint) included.
+TEST_F(GenerateCommandTest, GenerateAndCheckCountTheSameBlockers) {
+  for (const std::string arguments : {"-r kuka -n 20 --mix", "-r kuka -n 25", "-r yumi -n 20"})
+    for (int seed : {1, 2, 3}) {
+      const fs::path file = folder / ("scene" + std::to_string(seed) + ".xml");
+      const CommandRun made =
+          generate(arguments + " -s " + std::to_string(seed) + " --force -o " + file.string());
+      ASSERT_EQ(made.exitCode, 0) << made.output;
+      std::smatch said;
+      ASSERT_TRUE(std::regex_search(made.output, said, std::regex("\\(([0-9]+) on the approach")))
+          << made.output;
+      const core::Problem problem = load(file);
+      const auto counted = core::approachBlockers(problem, problem.queries.at(0).goal);
+      EXPECT_EQ(std::to_string(counted.size()), said[1].str()) << arguments << " -s " << seed;
+    }
+}
+
 TEST_F(GenerateCommandTest, MixedSceneHasABottleBoxesAndCans) {
   const fs::path file = folder / "mixed.xml";
   ASSERT_EQ(generate("-r kuka -n 9 --mix -o " + file.string()).exitCode, 0);
@@ -278,6 +296,7 @@ TEST_F(GenerateCommandTest, MixedSceneHasABottleBoxesAndCans) {
   EXPECT_EQ(kautham("check " + file.string() + " --model-dir models").exitCode, 0);
   EXPECT_EQ(generate("-r kuka -n 9 --mix --layout top -o " + (folder / "x.xml").string()).exitCode,
             2);
+  EXPECT_EQ(generate("-r yumi -n 9 --mix -o " + (folder / "x.xml").string()).exitCode, 2);
 }
 
 /// Every shipped scene is what its recorded command writes today: none was edited by hand or

@@ -127,7 +127,7 @@ struct GoalRegion {
   /// An axis of the goal link (in its own frame) that must lie level, within
   /// `approachTolerance` of horizontal: for a side grasp, the axis the fingers open along.
   std::optional<Eigen::Vector3d> levelAxis;
-  /// A box in the goal link's frame that no object but the target may occupy in a goal state:
+  /// A box in the goal link's frame that no movable object may occupy in a goal state:
   /// the space between the open fingers and on the final approach to the grasp.
   struct FreeSpace {
     Eigen::Vector3d size = Eigen::Vector3d::Zero();    ///< full side lengths, m

@@ -21,6 +21,7 @@ class GoalFreeSpace {
  public:
   static constexpr double kSpacing = 0.01;  ///< m between grid points, at most
 
+  /// Throws std::invalid_argument unless every side of `size` is positive.
   GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Eigen::Vector3d& size,
                 const Eigen::Vector3d& center);
 
@@ -38,6 +39,7 @@ class GoalFreeSpace {
   double boundingRadius_;              ///< of the box, about its centre
   std::vector<Eigen::Vector3d> grid_;  ///< in the goal link's frame
   std::vector<std::size_t> movable_;   ///< bodies that may not be in the box
+  std::vector<double> shapeRadius_;    ///< per layout shape: its bounding ball about its origin
 };
 
 }  // namespace kautham::physics
