@@ -279,24 +279,12 @@ std::string clutterProblemXml(const ClutterOptions& options, const std::vector<C
   xml += fmt::format("    <Home {}/>\n", setup.home);
   xml += "  </Robot>\n";
   xml += fmt::format("  <Controls robot=\"{}\"/>\n\n", setup.controls);
-  xml +=
-      "  <Obstacle obstacle=\"objects/table.urdf\" role=\"fixed\">\n"
-      "    <KauthamName name=\"table\"/>\n"
-      "    <Home X=\"0\" Y=\"0\" Z=\"0.75\"/>\n"
-      "  </Obstacle>\n";
-  xml += fmt::format(
-      "  <Obstacle obstacle=\"objects/glass.urdf\" role=\"target\">\n"
-      "    <KauthamName name=\"glass\"/>\n"
-      "    <Home X=\"{}\" Y=\"{}\" Z=\"0.825\"/>\n"
-      "  </Obstacle>\n",
-      metres(setup.target.x), metres(setup.target.y));
+  xml += obstacleXml("objects/table.urdf", "fixed", "table", "0", "0", "0.75");
+  xml += obstacleXml("objects/glass.urdf", "target", "glass", metres(setup.target.x),
+                     metres(setup.target.y), "0.825");
   for (std::size_t i = 0; i < cans.size(); ++i)
-    xml += fmt::format(
-        "  <Obstacle obstacle=\"objects/can.urdf\" role=\"movable\">\n"
-        "    <KauthamName name=\"can{}\"/>\n"
-        "    <Home X=\"{}\" Y=\"{}\" Z=\"0.811\"/>\n"
-        "  </Obstacle>\n",
-        i + 1, metres(cans[i].x), metres(cans[i].y));
+    xml += obstacleXml("objects/can.urdf", "movable", fmt::format("can{}", i + 1),
+                       metres(cans[i].x), metres(cans[i].y), "0.811");
   xml +=
       "\n"
       "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "

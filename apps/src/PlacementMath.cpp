@@ -59,4 +59,14 @@ std::string escapeComment(const std::string& text) {
   return out;
 }
 
+std::string obstacleXml(const std::string& urdf, const std::string& role, const std::string& name,
+                        const std::string& x, const std::string& y, const std::string& z) {
+  return fmt::format(
+      "  <Obstacle obstacle=\"{}\" role=\"{}\">\n"
+      "    <KauthamName name=\"{}\"/>\n"
+      "    <Home X=\"{}\" Y=\"{}\" Z=\"{}\"/>\n"
+      "  </Obstacle>\n",
+      urdf, role, name, x, y, z);
+}
+
 }  // namespace kautham::apps::placement

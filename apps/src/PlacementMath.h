@@ -39,4 +39,9 @@ std::string escapeAttribute(const std::string& text);
 /// Text for an XML comment, which may not contain "--" nor end with "-".
 std::string escapeComment(const std::string& text);
 
+/// One <Obstacle> element of a generated problem file, with its <KauthamName> and <Home>
+/// position (coordinates as they are to be written).
+std::string obstacleXml(const std::string& urdf, const std::string& role, const std::string& name,
+                        const std::string& x, const std::string& y, const std::string& z);
+
 }  // namespace kautham::apps::placement

@@ -314,27 +314,15 @@ std::string sideGraspProblemXml(const ClutterOptions& options,
   xml += fmt::format("    <Home {}/>\n", s.home);
   xml += "  </Robot>\n";
   xml += fmt::format("  <Controls robot=\"{}\"/>\n\n", s.controls);
-  xml +=
-      "  <Obstacle obstacle=\"objects/table.urdf\" role=\"fixed\">\n"
-      "    <KauthamName name=\"table\"/>\n"
-      "    <Home X=\"0\" Y=\"0\" Z=\"0.75\"/>\n"
-      "  </Obstacle>\n";
-  xml += fmt::format(
-      "  <Obstacle obstacle=\"{}\" role=\"target\">\n"
-      "    <KauthamName name=\"{}\"/>\n"
-      "    <Home X=\"{}\" Y=\"{}\" Z=\"{}\"/>\n"
-      "  </Obstacle>\n",
-      s.targetUrdf, s.targetName, metres(s.target.x), metres(s.target.y), s.targetZ);
+  xml += obstacleXml("objects/table.urdf", "fixed", "table", "0", "0", "0.75");
+  xml += obstacleXml(s.targetUrdf, "target", s.targetName, metres(s.target.x), metres(s.target.y),
+                     s.targetZ);
   std::vector<int> counts(3, 0);
   for (const SceneObject& o : objects) {
     const ObjectModel& model = objectModel(o.kind);
     const int number = ++counts[o.kind == "can" ? 0 : o.kind == "box" ? 1 : 2];
-    xml += fmt::format(
-        "  <Obstacle obstacle=\"{}\" role=\"movable\">\n"
-        "    <KauthamName name=\"{}{}\"/>\n"
-        "    <Home X=\"{}\" Y=\"{}\" Z=\"{}\"/>\n"
-        "  </Obstacle>\n",
-        model.urdf, o.kind, number, metres(o.x), metres(o.y), model.z);
+    xml += obstacleXml(model.urdf, "movable", o.kind + std::to_string(number), metres(o.x),
+                       metres(o.y), model.z);
   }
   xml +=
       "\n"
