@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "Commands.h"
+#include "ParameterOverrides.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
 #include "StartCheck.h"
@@ -34,19 +35,6 @@ struct PlanOptions {
   std::vector<std::string> modelDirs;
   std::size_t query = 0;
 };
-
-std::vector<planners::ParameterOverride> parseOverrides(const PlanOptions& options) {
-  std::vector<planners::ParameterOverride> overrides;
-  for (const std::string& text : options.sets) {
-    const auto equals = text.find('=');
-    if (equals == std::string::npos || equals == 0)
-      throw std::invalid_argument("--set expects NAME=VALUE, got '" + text + "'");
-    overrides.emplace_back(text.substr(0, equals), text.substr(equals + 1));
-  }
-  if (options.time) overrides.emplace_back("time_limit", fmt::format("{}", *options.time));
-  if (options.threads) overrides.emplace_back("threads", fmt::format("{}", *options.threads));
-  return overrides;
-}
 
 /// A one-line progress display, only on a terminal (pipes and CI logs stay clean).
 planners::SolveHooks terminalHooks() {
@@ -108,7 +96,8 @@ int runPlan(const PlanOptions& options) {
     throw std::invalid_argument(fmt::format("--query {}: the problem has {} queries", options.query,
                                             problem.queries.size()));
   const planners::PlanRequest request = planners::makeRequest(
-      problem, options.planner, parseOverrides(options), planners::seedRandomness(options.seed));
+      problem, options.planner, parameterOverrides(options.sets, options.time, options.threads),
+      planners::seedRandomness(options.seed));
 
   const auto contextOwner = makeCheckedContext(problem, options.query, request);
   physics::PlanningContext& context = *contextOwner;
