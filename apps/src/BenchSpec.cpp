@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "JsonFileText.h"
 #include "kautham/core/InputError.h"
 
 namespace kautham::apps {
@@ -22,10 +23,10 @@ using nlohmann::json;
 /// Reads a benchmark file; every error names the file and, where the text shows it, the line.
 class BenchFileReader {
  public:
-  explicit BenchFileReader(fs::path file) : file_(std::move(file)) {}
+  explicit BenchFileReader(fs::path file) : source_(std::move(file)) {}
 
   BenchSpec read() {
-    const json root = parse();
+    const json root = source_.parse("the benchmark file", "not JSON: ");
     if (!root.is_object()) fail("", "a benchmark file holds one JSON object");
     static const std::set<std::string> known{"name", "problems", "configs", "runs",
                                              "seed", "time",     "threads", "validate"};
@@ -53,27 +54,14 @@ class BenchFileReader {
   }
 
  private:
-  json parse() {
-    std::ifstream in(file_, std::ios::binary);
-    if (!in) throw core::InputError({file_, 0}, "cannot open the benchmark file");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text_ = buffer.str();
-    try {
-      return json::parse(text_);
-    } catch (const json::parse_error& e) {
-      throw core::InputError({file_, lineAt(e.byte == 0 ? 0 : e.byte - 1)},
-                             std::string("not JSON: ") + e.what());
-    }
-  }
-
   std::vector<fs::path> problems(const json& list) {
     if (!list.is_array()) fail("problems", "\"problems\" must be an array of file names");
     std::vector<fs::path> result;
     for (const json& p : list) {
       const fs::path path = text(p, "problems");
       // Relative to the benchmark file, so that the file works from any folder.
-      result.push_back(path.is_absolute() ? path : (file_.parent_path() / path).lexically_normal());
+      result.push_back(
+          path.is_absolute() ? path : (source_.file().parent_path() / path).lexically_normal());
     }
     return result;
   }
@@ -114,17 +102,10 @@ class BenchFileReader {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-    const std::size_t at = key.empty() ? std::string::npos : text_.find("\"" + key + "\"");
-    throw core::InputError({file_, at == std::string::npos ? 0 : lineAt(at)}, message);
+    throw core::InputError({source_.file(), key.empty() ? 0 : source_.keyLine(key)}, message);
   }
 
-  int lineAt(std::size_t offset) const {
-    offset = std::min(offset, text_.size());
-    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + offset, '\n'));
-  }
-
-  fs::path file_;
-  std::string text_;
+  JsonFileText source_;
 };
 
 /// Names become folder names and the planner's line in the OMPL log.

@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "JsonFileText.h"
 #include "PlanFile.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/core/Random.h"
@@ -48,21 +49,10 @@ struct PlanControls {
 /// be found in the text, the line.
 class PlanReader {
  public:
-  explicit PlanReader(fs::path file) : file_(std::move(file)) {}
+  explicit PlanReader(fs::path file) : source_(std::move(file)) {}
 
   PlanControls read() {
-    std::ifstream in(file_, std::ios::binary);
-    if (!in) throw core::InputError({file_, 0}, "cannot open the plan file");
-    std::ostringstream buffer;
-    buffer << in.rdbuf();
-    text_ = buffer.str();
-    json plan;
-    try {
-      plan = json::parse(text_);
-    } catch (const json::parse_error& e) {
-      throw core::InputError({file_, lineAt(e.byte == 0 ? 0 : e.byte - 1)},
-                             std::string("not a JSON plan file: ") + e.what());
-    }
+    const json plan = source_.parse("the plan file", "not a JSON plan file: ");
     if (!plan.is_object() || plan.value("format", json()) != "kautham-plan")
       fail("", "not a kautham plan: \"format\" must be \"kautham-plan\"");
     if (!plan.contains("format_version") || plan["format_version"] != kPlanFormatVersion)
@@ -87,7 +77,8 @@ class PlanReader {
     for (std::size_t i = 0; i < controls.size(); ++i) {
       const json& c = controls[i];
       auto bad = [&](const std::string& what) {
-        throw core::InputError({file_, controlLine(i)}, fmt::format("controls[{}]: {}", i, what));
+        throw core::InputError({source_.file(), controlLine(i)},
+                               fmt::format("controls[{}]: {}", i, what));
       };
       if (!c.is_object()) bad("expected an object with \"values\" and \"steps\"");
       if (!c.contains("values") || !c["values"].is_array() || c["values"].empty())
@@ -109,31 +100,21 @@ class PlanReader {
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-    throw core::InputError({file_, key.empty() ? 1 : keyLine(key)}, message);
+    throw core::InputError({source_.file(), key.empty() ? 1 : source_.keyLine(key)}, message);
   }
   /// The line of the i-th control's values, for an error about its size.
   int controlLine(std::size_t index) const {
-    std::size_t at = text_.find("\"controls\"");
+    const std::string& text = source_.text();
+    std::size_t at = text.find("\"controls\"");
     if (at == std::string::npos) return 0;
     const std::size_t key = at;
-    for (std::size_t n = 0; n <= index && at != std::string::npos; ++n)
-      at = text_.find('{', at + 1);
-    return lineAt(at == std::string::npos ? key : at);
+    for (std::size_t n = 0; n <= index && at != std::string::npos; ++n) at = text.find('{', at + 1);
+    return source_.lineAt(at == std::string::npos ? key : at);
   }
-  const fs::path& file() const { return file_; }
+  const fs::path& file() const { return source_.file(); }
 
  private:
-  int keyLine(const std::string& key) const {
-    const std::size_t at = text_.find("\"" + key + "\"");
-    return at == std::string::npos ? 0 : lineAt(at);
-  }
-  int lineAt(std::size_t offset) const {
-    offset = std::min(offset, text_.size());
-    return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + offset, '\n'));
-  }
-
-  fs::path file_;
-  std::string text_;
+  JsonFileText source_;
 };
 
 /// The reasons a run fails, as the report groups them.
