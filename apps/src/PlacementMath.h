@@ -44,4 +44,8 @@ std::string escapeComment(const std::string& text);
 std::string obstacleXml(const std::string& urdf, const std::string& role, const std::string& name,
                         const std::string& x, const std::string& y, const std::string& z);
 
+/// The <Physics>, <Uncertainty> and <Interaction> elements every generated table scene
+/// shares (a commented block of the file).
+std::string tablePhysicsXml();
+
 }  // namespace kautham::apps::placement

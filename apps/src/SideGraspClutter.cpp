@@ -324,18 +324,7 @@ std::string sideGraspProblemXml(const ClutterOptions& options,
     xml += obstacleXml(model.urdf, "movable", o.kind + std::to_string(number), metres(o.x),
                        metres(o.y), model.z);
   }
-  xml +=
-      "\n"
-      "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "
-      "solverIterations=\"20\"\n"
-      "           friction=\"0.5\" erp=\"0.2\" cfm=\"1e-5\"/>\n"
-      "  <!-- what is known only roughly: object poses to 5 mm and 0.05 rad, friction to 0.05,\n"
-      "       joint speeds to 0.2 % of their limits -->\n"
-      "  <Uncertainty x=\"0.005\" y=\"0.005\" yaw=\"0.05\" friction=\"0.05\" "
-      "control=\"0.002\"/>\n"
-      "  <Interaction support=\"table\" maxObjectSpeed=\"1.0\" maxDisplacement=\"0.3\" "
-      "maxTilt=\"0.35\"\n"
-      "               targetTolerance=\"0.005\"/>\n";
+  xml += "\n" + tablePhysicsXml();
   xml += fmt::format("  <Workspace min=\"{}\" max=\"{}\"/>\n\n", s.workspaceMin, s.workspaceMax);
   xml +=
       "  <Planner>\n"
