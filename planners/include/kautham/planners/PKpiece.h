@@ -13,37 +13,11 @@
 #include "kautham/planners/GoalSteering.h"
 #include "kautham/planners/MotionEvaluator.h"
 #include "kautham/planners/ObjectPoseBelief.h"
+#include "kautham/planners/PKpieceSettings.h"
 #include "kautham/planners/ParallelPlanner.h"
 #include "kautham/planners/RobotSpread.h"
 
 namespace kautham::planners {
-
-/// The parameters of p-KPIECE (docs/planners.md gives each with the paper's name).
-struct PKpieceSettings {
-  unsigned candidates = 5;        ///< k: candidate motions sampled per expansion
-  unsigned particles = 15;        ///< n_p: particle motions per valid candidate
-  double displacement = 0.3;      ///< d: most an object may move in one particle motion (m)
-  double randomCandidate = 0.05;  ///< bias: probability of keeping a random valid candidate
-  double beliefWeight = 0.0;      ///< f: weight of the cell belief; <= 0: the number of cells
-  double kpieceSelection = 0.1;   ///< probability of choosing a cell's motion as KPIECE does
-  double goalBias = 0.2;          ///< probability of expanding one of the motions nearest the goal
-  double borderFraction = 0.8;    ///< probability of expanding an exterior cell
-  bool uncertainty = true;        ///< false: one nominal particle, nothing sampled ("pKP")
-  /// A candidate ends the search only if the plan it ends is estimated to succeed at least this
-  /// often: the path belief to it times the fraction of its particles that end valid in the
-  /// goal region (not in the paper: its belief judges validity, not the goal).
-  double goalConfidence = 0.5;
-  /// Cells and motions are judged by the belief of the whole path to a motion (the product
-  /// of its candidates' beliefs) rather than by the motion's own (docs/planners.md).
-  bool pathBelief = true;
-  /// A candidate's particles start from the robot states its parent's particles reached, so
-  /// control noise accumulates along a path (false: from the tree's nominal robot state).
-  bool robotSpread = true;
-  /// Stop judging a candidate once it cannot beat the best one so far (the same choice).
-  bool pruneCandidates = true;
-  /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
-  bool goalSteering = true;
-};
 
 /// p-KPIECE (Muhayyuddin, Moll, Kavraki, Rosell, RA-L 2018; Algorithms 1 and 2): KPIECE whose
 /// expansions keep the most robust of k candidate motions, judged by n_p particle motions run
