@@ -1,5 +1,6 @@
 // `kautham planners`: every registered planner with its parameters.
 
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -10,6 +11,7 @@
 #include "Commands.h"
 #include "kautham/planners/PlanRequest.h"
 #include "kautham/planners/PlannerRegistry.h"
+#include "kautham/planners/PluginLoader.h"
 
 namespace kautham::apps {
 
@@ -91,6 +93,8 @@ void addPlannersCommand(CLI::App& app, int& exitCode) {
     printParameters(planners::commonParameters());
     for (const auto* entry : planners::plannerRegistry().entries()) {
       fmt::print("\n{}: {}\n", entry->name, entry->summary);
+      const std::filesystem::path plugin = planners::pluginOfPlanner(entry->name);
+      if (!plugin.empty()) fmt::print("    from plugin {}\n", plugin.string());
       printParameters(entry->parameters);
     }
     exitCode = kExitSolved;
