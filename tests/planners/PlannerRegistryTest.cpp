@@ -11,11 +11,11 @@
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
-#include "kautham/planners/PKpieceSettings.h"
 #include "kautham/planners/PlanRequest.h"
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/PlannerRegistry.h"
 #include "kautham/planners/Solve.h"
+#include "kautham/planners/pkpiece/PKpieceSettings.h"
 
 namespace kautham::planners {
 namespace {

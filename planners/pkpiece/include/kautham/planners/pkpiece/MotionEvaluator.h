@@ -6,11 +6,11 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/UncertaintySampler.h"
-#include "kautham/planners/ObjectPoseBelief.h"
-#include "kautham/planners/ParticleJob.h"
-#include "kautham/planners/ParticleVerdict.h"
-#include "kautham/planners/ParticleWorkers.h"
-#include "kautham/planners/RobotSpread.h"
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
+#include "kautham/planners/pkpiece/ParticleJob.h"
+#include "kautham/planners/pkpiece/ParticleVerdict.h"
+#include "kautham/planners/pkpiece/ParticleWorkers.h"
+#include "kautham/planners/pkpiece/RobotSpread.h"
 
 namespace kautham::planners {
 

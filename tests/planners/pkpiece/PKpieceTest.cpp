@@ -7,9 +7,9 @@
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/physics/UncertaintySampler.h"
-#include "kautham/planners/MotionEvaluator.h"
-#include "kautham/planners/ObjectPoseBelief.h"
 #include "kautham/planners/Solve.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
 
 namespace kautham::planners {
 namespace {

@@ -1,4 +1,4 @@
-#include "kautham/planners/ObjectPoseBelief.h"
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
 
 namespace kautham::planners {
 

@@ -5,9 +5,9 @@
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
-#include "kautham/planners/GoalSteering.h"
-#include "kautham/planners/MotionEvaluator.h"
-#include "kautham/planners/RobotSpread.h"
+#include "kautham/planners/pkpiece/GoalSteering.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/RobotSpread.h"
 
 namespace kautham::planners {
 namespace {

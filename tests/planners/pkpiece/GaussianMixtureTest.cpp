@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "kautham/planners/GaussianMixture.h"
+#include "kautham/planners/pkpiece/GaussianMixture.h"
 
 namespace kautham::planners {
 namespace {

@@ -1,4 +1,4 @@
-#include "kautham/planners/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
 
 #include <algorithm>
 

@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-#include "kautham/planners/ParticleVerdict.h"
+#include "kautham/planners/pkpiece/ParticleVerdict.h"
 
 namespace kautham::planners {
 namespace {

@@ -1,4 +1,4 @@
-#include "kautham/planners/PKpiece.h"
+#include "kautham/planners/pkpiece/PKpiece.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "kautham/planners/ParticleWorkers.h"
+#include "kautham/planners/pkpiece/ParticleWorkers.h"
 
 #include <poll.h>
 #include <sys/socket.h>

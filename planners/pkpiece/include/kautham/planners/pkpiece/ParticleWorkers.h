@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "kautham/planners/ParticleJob.h"
+#include "kautham/planners/pkpiece/ParticleJob.h"
 
 namespace kautham::planners {
 

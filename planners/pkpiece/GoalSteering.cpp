@@ -1,4 +1,4 @@
-#include "kautham/planners/GoalSteering.h"
+#include "kautham/planners/pkpiece/GoalSteering.h"
 
 #include <algorithm>
 #include <cmath>

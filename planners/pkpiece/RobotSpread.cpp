@@ -1,4 +1,4 @@
-#include "kautham/planners/RobotSpread.h"
+#include "kautham/planners/pkpiece/RobotSpread.h"
 
 namespace kautham::planners {
 

@@ -3,7 +3,7 @@
 #include <optional>
 
 #include "kautham/physics/PlanningContext.h"
-#include "kautham/planners/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
 
 namespace kautham::planners {
 

@@ -7,7 +7,7 @@
 
 #include "kautham/physics/UncertaintySampler.h"
 #include "kautham/physics/WorldLayout.h"
-#include "kautham/planners/GaussianMixture.h"
+#include "kautham/planners/pkpiece/GaussianMixture.h"
 
 namespace kautham::planners {
 

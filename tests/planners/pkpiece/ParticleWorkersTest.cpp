@@ -10,10 +10,10 @@
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
-#include "kautham/planners/MotionEvaluator.h"
-#include "kautham/planners/ParticleWorkers.h"
 #include "kautham/planners/PlanRequest.h"
 #include "kautham/planners/Solve.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/ParticleWorkers.h"
 
 namespace kautham::planners {
 namespace {

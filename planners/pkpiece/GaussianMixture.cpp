@@ -1,4 +1,4 @@
-#include "kautham/planners/GaussianMixture.h"
+#include "kautham/planners/pkpiece/GaussianMixture.h"
 
 #include <algorithm>
 #include <cmath>

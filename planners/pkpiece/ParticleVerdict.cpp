@@ -1,4 +1,4 @@
-#include "kautham/planners/ParticleVerdict.h"
+#include "kautham/planners/pkpiece/ParticleVerdict.h"
 
 #include <algorithm>
 

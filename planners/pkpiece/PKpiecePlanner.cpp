@@ -3,8 +3,8 @@
 
 #include <ompl/control/planners/kpiece/KPIECE1.h>
 
-#include "kautham/planners/PKpiece.h"
 #include "kautham/planners/PlannerEntry.h"
+#include "kautham/planners/pkpiece/PKpiece.h"
 
 namespace kautham::planners {
 

@@ -10,12 +10,12 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/BeliefReporter.h"
-#include "kautham/planners/GoalSteering.h"
-#include "kautham/planners/MotionEvaluator.h"
-#include "kautham/planners/ObjectPoseBelief.h"
-#include "kautham/planners/PKpieceSettings.h"
 #include "kautham/planners/ParallelPlanner.h"
-#include "kautham/planners/RobotSpread.h"
+#include "kautham/planners/pkpiece/GoalSteering.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
+#include "kautham/planners/pkpiece/PKpieceSettings.h"
+#include "kautham/planners/pkpiece/RobotSpread.h"
 
 namespace kautham::planners {
 
