@@ -1,4 +1,6 @@
-// OMPL's own control planners, run over our physics (ompl::control, not ompl/extensions/ode).
+// OMPL's own control planners, run over our physics (ompl::control, not ompl/extensions/ode),
+// and o-KPIECE, the paper's baseline: OMPL's KPIECE1 whose validity checks only the knowledge
+// rules.
 // Each parameter is OMPL's, by OMPL's name: our spec gives its default, range, description and
 // Kautham's alias, and the value is set through OMPL's parameter set (omplPlannerEntry).
 
@@ -71,6 +73,16 @@ PlannerRegistry::Entry pdst() {
       {goalBiasParameter(0.05)});
 }
 
+PlannerRegistry::Entry oKpiece() {
+  return omplPlannerEntry<ompl::control::KPIECE1>(
+      "o-KPIECE",
+      "the paper's baseline: KPIECE whose validity knows only whom the robot may touch "
+      "(no after-effect checks, no uncertainty)",
+      {goalBiasParameter(0.05), cellSizeParameter()}, [](physics::PlanningContext& context) {
+        context.usePlanningRules(physics::ValidityRules::KnowledgeOnly);
+      });
+}
+
 }  // namespace
 
 void registerOmplControlPlanners(PlannerRegistry& registry) {
@@ -79,6 +91,7 @@ void registerOmplControlPlanners(PlannerRegistry& registry) {
   registry.add(sst());
   registry.add(est());
   registry.add(pdst());
+  registry.add(oKpiece());
 }
 
 }  // namespace kautham::planners

@@ -1,7 +1,5 @@
-// The KPIECE family of the paper: p-KPIECE (ours, on OMPL's grid) and o-KPIECE (OMPL's
-// KPIECE1 with the knowledge rules only).
-
-#include <ompl/control/planners/kpiece/KPIECE1.h>
+// p-KPIECE's registry entry: the paper's planner, ours, on OMPL's grid (its baseline o-KPIECE,
+// OMPL's KPIECE1 with the knowledge rules only, is with the other OMPL planners).
 
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/pkpiece/PKpiece.h"
@@ -24,21 +22,8 @@ PlannerRegistry::Entry pKpiece() {
       });
 }
 
-PlannerRegistry::Entry oKpiece() {
-  return omplPlannerEntry<ompl::control::KPIECE1>(
-      "o-KPIECE",
-      "the paper's baseline: KPIECE whose validity knows only whom the robot may touch "
-      "(no after-effect checks, no uncertainty)",
-      {goalBiasParameter(0.05), cellSizeParameter()}, [](physics::PlanningContext& context) {
-        context.usePlanningRules(physics::ValidityRules::KnowledgeOnly);
-      });
-}
-
 }  // namespace
 
-void registerKpieceFamily(PlannerRegistry& registry) {
-  registry.add(pKpiece());
-  registry.add(oKpiece());
-}
+void registerPKpiece(PlannerRegistry& registry) { registry.add(pKpiece()); }
 
 }  // namespace kautham::planners
