@@ -7,7 +7,7 @@
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/UncertaintySampler.h"
 #include "kautham/planners/pkpiece/ObjectPoseBelief.h"
-#include "kautham/planners/pkpiece/ParticleJob.h"
+#include "kautham/planners/pkpiece/ParticleRunner.h"
 #include "kautham/planners/pkpiece/ParticleVerdict.h"
 #include "kautham/planners/pkpiece/ParticleWorkers.h"
 #include "kautham/planners/pkpiece/RobotSpread.h"

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "kautham/planners/pkpiece/ParticleJob.h"
+#include "kautham/planners/pkpiece/ParticleRunner.h"
 
 namespace kautham::planners {
 

@@ -1,4 +1,4 @@
-#include "kautham/planners/pkpiece/ParticleJob.h"
+#include "kautham/planners/pkpiece/ParticleRunner.h"
 
 #include <algorithm>
 
