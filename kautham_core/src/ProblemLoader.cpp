@@ -292,8 +292,8 @@ class ProblemReader {
   }
 
   void readPhysics(const XMLElement& e) {
-    xml_.allowAttributes(
-        e, {"stepSize", "gravity", "maxContacts", "solverIterations", "friction", "erp", "cfm"});
+    xml_.allowAttributes(e, {"stepSize", "gravity", "maxContacts", "solverIterations", "friction",
+                             "erp", "cfm", "sleep", "sleepSpeed", "sleepSteps"});
     PhysicsSettings& p = problem_.physics;
     p.where = xml_.at(e);
     p.stepSize = positive(e, "stepSize", p.stepSize);
@@ -303,6 +303,10 @@ class ProblemReader {
     p.friction = nonNegative(e, "friction", p.friction);
     p.erp = nonNegative(e, "erp", p.erp);
     p.cfm = nonNegative(e, "cfm", p.cfm);
+    p.sleep = xml_.flag(e, "sleep", p.sleep);
+    p.sleepSpeed = positive(e, "sleepSpeed", p.sleepSpeed);
+    p.sleepSteps = xml_.integer(e, "sleepSteps", p.sleepSteps);
+    if (p.sleepSteps < 1) xml_.fail(e, "sleepSteps must be at least 1");
     if (p.stepSize > 0.1) xml_.fail(e, "stepSize must be at most 0.1 s for a stable simulation");
     if (p.maxContacts < 1 || p.maxContacts > 64) xml_.fail(e, "maxContacts must be in [1, 64]");
     if (p.solverIterations < 1 || p.solverIterations > 1000)

@@ -113,6 +113,16 @@ int XmlReader::integer(const tinyxml2::XMLElement& element, const char* attribut
   return static_cast<int>(value);
 }
 
+bool XmlReader::flag(const tinyxml2::XMLElement& element, const char* attribute,
+                     bool fallback) const {
+  const auto text = optionalText(element, attribute);
+  if (!text) return fallback;
+  if (*text == "true" || *text == "1") return true;
+  if (*text == "false" || *text == "0") return false;
+  fail(element,
+       std::string("attribute ") + attribute + " must be true or false, got '" + *text + "'");
+}
+
 Eigen::Vector3d XmlReader::vector3(const tinyxml2::XMLElement& element, const char* attribute,
                                    const Eigen::Vector3d& fallback) const {
   auto text = optionalText(element, attribute);

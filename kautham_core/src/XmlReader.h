@@ -43,6 +43,8 @@ class XmlReader {
   double number(const tinyxml2::XMLElement& element, const char* attribute, double fallback) const;
   double requiredNumber(const tinyxml2::XMLElement& element, const char* attribute) const;
   int integer(const tinyxml2::XMLElement& element, const char* attribute, int fallback) const;
+  /// "true" or "false" (also "1" or "0").
+  bool flag(const tinyxml2::XMLElement& element, const char* attribute, bool fallback) const;
   /// Three numbers in one attribute, "x y z".
   Eigen::Vector3d vector3(const tinyxml2::XMLElement& element, const char* attribute,
                           const Eigen::Vector3d& fallback) const;

@@ -75,6 +75,57 @@ bool GoalFreeSpace::isFree(const double* state, const Eigen::Isometry3d& goalLin
   return occupants(state, goalLink).empty();
 }
 
+GoalFreeSpace::Occupancy GoalFreeSpace::occupancy(const double* state,
+                                                  const Eigen::Isometry3d& goalLink) const {
+  const Eigen::Vector3d boxCentre = goalLink * center_;
+  // The shapes near the box, each with its body and the map from world to its own frame.
+  struct NearShape {
+    const core::Shape* shape;
+    std::size_t body;
+    Eigen::Isometry3d toShape;
+  };
+  std::vector<NearShape> near;
+  for (std::size_t body : movable_) {
+    const std::optional<Eigen::Isometry3d> pose = poseIfNear(body, state, boxCentre);
+    if (!pose) continue;
+    for (std::size_t s = 0; s < layout_->shapes.size(); ++s)
+      if (layout_->shapes[s].body == static_cast<int>(body))
+        near.push_back(
+            {&layout_->shapes[s].shape, body, (*pose * layout_->shapes[s].pose).inverse()});
+  }
+  Occupancy result;
+  if (near.empty()) return result;
+  std::vector<std::size_t> pointsOf(layout_->bodies.size(), 0);
+  std::size_t occupied = 0;
+  for (const Eigen::Vector3d& p : grid_) {
+    const Eigen::Vector3d world = goalLink * p;
+    for (const NearShape& n : near)
+      if (inside(*n.shape, n.toShape * world)) {
+        ++occupied;
+        ++pointsOf[n.body];
+        break;
+      }
+  }
+  result.fraction = static_cast<double>(occupied) / static_cast<double>(grid_.size());
+  const auto most = std::max_element(pointsOf.begin(), pointsOf.end());
+  if (*most > 0) result.largest = static_cast<std::size_t>(most - pointsOf.begin());
+  return result;
+}
+
+std::optional<Eigen::Isometry3d> GoalFreeSpace::poseIfNear(std::size_t body, const double* state,
+                                                           const Eigen::Vector3d& boxCentre) const {
+  const Eigen::Vector3d position = WorldLayout::position(state, body);
+  double reach = 0.0;
+  for (std::size_t s = 0; s < layout_->shapes.size(); ++s)
+    if (layout_->shapes[s].body == static_cast<int>(body))
+      reach = std::max(reach, layout_->shapes[s].pose.translation().norm() + shapeRadius_[s]);
+  if ((position - boxCentre).norm() > reach + boundingRadius_) return std::nullopt;
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = WorldLayout::orientation(state, body).normalized().toRotationMatrix();
+  pose.translation() = position;
+  return pose;
+}
+
 bool GoalFreeSpace::occupies(std::size_t body, const double* state,
                              const std::vector<Eigen::Vector3d>& worldPoints,
                              const Eigen::Vector3d& boxCentre) const {

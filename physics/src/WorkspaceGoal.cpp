@@ -11,6 +11,29 @@ namespace {
 // Makes an approach error comparable to a position error for the search's distance: turning
 // the gripper by 0.1 rad counts like moving it 1 cm.
 constexpr double kMetresPerRadian = 0.1;
+// Makes a filled free space comparable to a position error: a can standing in the dense
+// suite's box fills about a fifth of it, which counts like being 20 cm away, so a state with
+// the gripper at the goal and the can still between its fingers ranks behind one where the
+// can is pushed out and the gripper is 10 cm away.
+constexpr double kMetresPerOccupiedBox = 1.0;
+
+/// The goal link's orientation at the goal: its +z along the approach, and its level axis
+/// horizontal (the side of the approach; a free space symmetric about the approach does not
+/// care which).
+Eigen::Matrix3d nominalOrientation(const Eigen::Vector3d& approach, const Eigen::Vector3d& level) {
+  const Eigen::Vector3d linkZ = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d linkLevel = level - level.dot(linkZ) * linkZ;
+  Eigen::Vector3d worldLevel = approach.cross(Eigen::Vector3d::UnitZ());
+  if (linkLevel.norm() < 1e-9 || worldLevel.norm() < 1e-9) return Eigen::Matrix3d::Identity();
+  linkLevel.normalize();
+  worldLevel.normalize();
+  Eigen::Matrix3d link;
+  link << linkZ, linkLevel, linkZ.cross(linkLevel);
+  Eigen::Matrix3d world;
+  const Eigen::Vector3d a = approach.normalized();
+  world << a, worldLevel, a.cross(worldLevel);
+  return world * link.transpose();
+}
 }  // namespace
 
 WorkspaceGoal::WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
@@ -18,10 +41,13 @@ WorkspaceGoal::WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
     : GoalRegion(si), layout_(std::move(layout)), spec_(std::move(spec)) {
   setThreshold(spec_.joints.empty() ? spec_.tolerance : spec_.jointTolerance);
   if (spec_.freeSpace) freeSpace_.emplace(layout_, spec_.freeSpace->size, spec_.freeSpace->center);
+  nominalGoalPose_.translation() = spec_.position;
+  if (spec_.approach && spec_.levelAxis)
+    nominalGoalPose_.linear() = nominalOrientation(*spec_.approach, *spec_.levelAxis);
 }
 
 double WorkspaceGoal::distanceGoal(const ompl::base::State* state) const {
-  const double d = distance(WorldStateSpace::values(state));
+  const double d = searchDistance(WorldStateSpace::values(state));
   best_ = std::min(best_, d);
   return d;
 }
@@ -37,6 +63,17 @@ double WorkspaceGoal::distance(const double* state) const {
   const double excess = std::max(0.0, approachError(state) - spec_.approachTolerance) +
                         std::max(0.0, levelError(state) - spec_.approachTolerance);
   return positionError(state) + kMetresPerRadian * excess;
+}
+
+double WorkspaceGoal::searchDistance(const double* state) const {
+  const double d = distance(state);
+  if (!freeSpace_) return d;
+  return d + kMetresPerOccupiedBox * freeSpace_->occupancy(state, nominalGoalPose_).fraction;
+}
+
+std::optional<std::size_t> WorkspaceGoal::freeSpaceBlocker(const double* state) const {
+  if (!freeSpace_) return std::nullopt;
+  return freeSpace_->occupancy(state, nominalGoalPose_).largest;
 }
 
 bool WorkspaceGoal::reached(const double* state) const {

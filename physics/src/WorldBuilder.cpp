@@ -140,7 +140,8 @@ class World::Builder {
     world_.world_ = dWorldCreate();
     dWorldSetGravity(world_.world_, s.gravity.x(), s.gravity.y(), s.gravity.z());
     dWorldSetQuickStepNumIterations(world_.world_, s.solverIterations);
-    dWorldSetAutoDisableFlag(world_.world_, 0);  // a sleeping body would hide state
+    // Only objects sleep (makeSleeper), and only in a way the state records (World::writeState).
+    dWorldSetAutoDisableFlag(world_.world_, 0);
     // A thin allowed penetration keeps resting contacts from flickering on and off.
     dWorldSetContactSurfaceLayer(world_.world_, 0.0005);
     world_.space_ = dSimpleSpaceCreate(nullptr);
@@ -378,8 +379,24 @@ class World::Builder {
     }
     const bool target = object.role == core::ObjectRole::Target;
     BodyInfo info{object.name, target ? BodyRole::Target : BodyRole::Movable, index, {}};
-    createBody(object.model, groups, root, home, info,
-               target ? GeomTag::Kind::Target : GeomTag::Kind::Movable);
+    dBodyID body = createBody(object.model, groups, root, home, info,
+                              target ? GeomTag::Kind::Target : GeomTag::Kind::Movable);
+    if (problem_.physics.sleep) makeSleeper(body);
+  }
+
+  /// ODE disables the object once it has been idle for sleepSteps steps (and zeroes its
+  /// velocity then), and wakes it when a contact joins it to an awake body.
+  void makeSleeper(dBodyID body) {
+    const core::PhysicsSettings& s = problem_.physics;
+    dBodySetAutoDisableFlag(body, 1);
+    dBodySetAutoDisableLinearThreshold(body, s.sleepSpeed);
+    dBodySetAutoDisableAngularThreshold(body, s.sleepSpeed);
+    // One sample: idleness is judged on the current step alone, so no history outlives a
+    // written state.
+    dBodySetAutoDisableAverageSamplesCount(body, 1);
+    dBodySetAutoDisableSteps(body, s.sleepSteps);
+    dBodySetAutoDisableTime(body, 0.0);
+    world_.sleepers_.push_back(body);
   }
 
   /// A fixed object of many shapes (a sensed environment, docs/physics.md) gets a collision

@@ -261,6 +261,7 @@ void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
   candidate.judged = true;
   if (!withParticles()) {
     // Without uncertainty the nominal run is the only particle (the paper's pKP column).
+    if (candidate.run.reachedGoal) settleNominalInGoal(candidate);
     candidate.verdict = evaluator_.judgeNominal(start, candidate.run.end.data());
     return;
   }
@@ -290,15 +291,19 @@ std::size_t PKpiece::recordIndex(const Candidate& candidate, unsigned step) {
 
 void PKpiece::settleInGoal(Candidate& candidate) const {
   // The nominal run went on while it stayed in the goal; it ends at the step where most
-  // particles are inside too (the earliest of equals), rather than where it entered: the
-  // region's border, which a particle misses as often as it hits.
+  // particles are inside too, and of equals where the nominal run is nearest the goal point,
+  // rather than where it entered: the region's border, which a particle misses as often as
+  // it hits.
   NominalRun& run = candidate.run;
   unsigned bestStep = run.goalFrom;
   unsigned bestCount = 0;
+  double bestDistance = std::numeric_limits<double>::infinity();
   for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
     const unsigned count = candidate.verdict.inGoalAt(recordIndex(candidate, step));
-    if (count > bestCount) {
+    const double distance = context_.goal().distance(run.states[step - 1].data());
+    if (count > bestCount || (count == bestCount && distance < bestDistance)) {
       bestCount = count;
+      bestDistance = distance;
       bestStep = step;
     }
   }
@@ -307,6 +312,27 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
   run.end = run.states.back();
   run.steps = bestStep;
   candidate.pieceEnds = pieceEnds(run);
+}
+
+void PKpiece::settleNominalInGoal(Candidate& candidate) const {
+  // The run went on while it stayed in the goal; where it entered is the region's edge, which
+  // control noise in an execution misses half the time. It ends where it is nearest the goal
+  // point instead (the earliest of equals).
+  NominalRun& run = candidate.run;
+  unsigned bestStep = run.goalFrom;
+  double best = std::numeric_limits<double>::infinity();
+  for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
+    const double d = context_.goal().distance(run.states[step - 1].data());
+    if (d < best) {
+      best = d;
+      bestStep = step;
+    }
+  }
+  run.states.resize(bestStep);
+  run.end = run.states.back();
+  run.steps = bestStep;
+  candidate.pieceEnds = pieceEnds(run);
+  candidate.recordAfter = candidate.pieceEnds;
 }
 
 double PKpiece::solutionConfidence(const Candidate& c) const {
@@ -427,7 +453,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->belief = chosen.verdict.belief();
   // Every piece of one candidate shares its belief: multiply it in once.
   motion->pathBelief = fromPathBelief * motion->belief;
-  motion->goalDistance = context_.goal().distance(values);
+  motion->goalDistance = context_.goal().searchDistance(values);
   motion->poses = std::move(poses);
   motion->robotSpread = std::move(robotSpread);
   motion->expansion = iteration_;
@@ -471,7 +497,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     root->state = si_->allocState();
     si_->copyState(root->state, pdef_->getStartState(0));
     const double* start = physics::WorldStateSpace::values(root->state);
-    root->goalDistance = context_.goal().distance(start);
+    root->goalDistance = context_.goal().searchDistance(start);
     root->poses = settings_.uncertainty
                       ? ObjectPoseBelief::initial(context_.layout(), evaluator_.sampler(), start)
                       : std::make_shared<const ObjectPoseBelief>();

@@ -314,8 +314,9 @@ int waitExitCode(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// pusher_cans_5 keeps KPIECE busy for the whole 60 s: plenty of time to interrupt it.
-const std::vector<std::string> kLongRun{"bench",     "problems/pusher_cans_5.xml",
+// kuka_clutter_40 keeps KPIECE busy for many seconds (docs/benchmarks.md): plenty of time to
+// interrupt it.
+const std::vector<std::string> kLongRun{"bench",     "problems/kuka_clutter_40.xml",
                                         "--planner", "KPIECE",
                                         "--runs",    "2",
                                         "--jobs",    "2",
@@ -346,13 +347,13 @@ TEST_F(BenchCommandTest, CrashedRunIsRecordedAsFailed) {
   kill(planners.front(), SIGSEGV);
   EXPECT_EQ(waitExitCode(bench), 1) << test::readFile(folder / "bench.txt");
 
-  const json result = readJson(folder / "out/runs/pusher_cans_5/KPIECE/run-0.json");
+  const json result = readJson(folder / "out/runs/kuka_clutter_40/KPIECE/run-0.json");
   EXPECT_EQ(result["status"], "Crash");
   EXPECT_TRUE(result["failed"].get<bool>());
   EXPECT_EQ(result["plan"]["signal"], SIGSEGV);
   EXPECT_EQ(result["properties"]["status ENUM"], "7");
   EXPECT_EQ(result["properties"]["solved BOOLEAN"], "0");
-  const std::string log = test::readFile(folder / "out/logs/pusher_cans_5.log");
+  const std::string log = test::readFile(folder / "out/logs/kuka_clutter_40.log");
   EXPECT_NE(log.find("1 runs\n"), std::string::npos) << log;
 }
 

@@ -469,6 +469,8 @@ const MalformedCase kMalformedCases[] = {
     {"home_twice", nullptr, 14, "<Home> appears twice inside <Obstacle> (first on line 13)"},
     {"physics_not_a_number", nullptr, 15, "friction: expected a number, got 'high'"},
     {"physics_out_of_range", nullptr, 15, "maxContacts must be in [1, 64]"},
+    {"physics_sleep_not_a_flag", nullptr, 15,
+     "attribute sleep must be true or false, got 'sometimes'"},
     {"kautham_max_contacts_out_of_range", nullptr, 21,
      "'Max Contacts' must be one number in [1, 64]"},
     {"unknown_role", nullptr, 11, "unknown role 'goal'; expected fixed, movable or target"},

@@ -46,6 +46,29 @@ TEST(GoalFreeSpaceTest, AnObjectOnThePregraspOccupiesItUntilItIsPushedAway) {
   EXPECT_EQ(after.size() + 1, before.size());
 }
 
+TEST(GoalFreeSpaceTest, TheSearchDistanceCountsTheBlockerUntilItIsPushedAway) {
+  test::ContextFixture fixture("problems/kuka_clutter_10.xml");
+  const WorkspaceGoal& goal = fixture.context.goal();
+  // The nominal goal pose is the one tcpAtGoal builds by hand.
+  EXPECT_TRUE(goal.nominalGoalPose().isApprox(tcpAtGoal(fixture.context), 1e-9));
+  const std::size_t can1 = fixture.body("can1");
+  EXPECT_EQ(goal.freeSpaceBlocker(fixture.state.data()), std::optional<std::size_t>(can1));
+  const double blocked =
+      goal.searchDistance(fixture.state.data()) - goal.distance(fixture.state.data());
+  EXPECT_GT(blocked, 0.1) << "a can in the box counts like being 10 cm or more away";
+  EXPECT_LT(blocked, 0.3);
+
+  fixture.bodyState("can1")[0] += 0.05;  // half way out: less in the way
+  const double halfWay =
+      goal.searchDistance(fixture.state.data()) - goal.distance(fixture.state.data());
+  EXPECT_GT(halfWay, 0.0);
+  EXPECT_LT(halfWay, blocked);
+
+  fixture.bodyState("can1")[0] += 0.15;
+  EXPECT_FALSE(goal.freeSpaceBlocker(fixture.state.data()).has_value());
+  EXPECT_EQ(goal.searchDistance(fixture.state.data()), goal.distance(fixture.state.data()));
+}
+
 TEST(GoalFreeSpaceTest, TheStartIsLevelButFarFromTheGoal) {
   test::ContextFixture fixture("problems/kuka_clutter_10.xml");
   const WorkspaceGoal& goal = fixture.context.goal();

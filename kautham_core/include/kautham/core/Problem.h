@@ -91,6 +91,11 @@ struct PhysicsSettings {
   double friction = 0.6;      ///< Coulomb friction coefficient mu
   double erp = 0.2;           ///< contact error reduction parameter
   double cfm = 1e-5;          ///< contact constraint force mixing
+  /// Objects at rest sleep until something awake touches them (docs/physics.md, "Sleeping
+  /// objects"): a resting object costs no contacts and no solver work.
+  bool sleep = true;
+  double sleepSpeed = 0.01;  ///< m/s and rad/s below which an object counts as idle
+  int sleepSteps = 10;       ///< idle steps after which an object falls asleep
   SourceLocation where;
 };
 

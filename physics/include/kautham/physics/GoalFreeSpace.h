@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,8 +29,17 @@ class GoalFreeSpace {
   /// Names of the movable objects that occupy the box, with the goal link at `goalLink`.
   std::vector<std::string> occupants(const double* state, const Eigen::Isometry3d& goalLink) const;
   bool isFree(const double* state, const Eigen::Isometry3d& goalLink) const;
+  /// How much of the box the objects fill, and which fills most.
+  struct Occupancy {
+    double fraction = 0.0;  ///< share of the grid points inside some movable object, in [0, 1]
+    std::optional<std::size_t> largest;  ///< the body holding the most points (none if empty)
+  };
+  Occupancy occupancy(const double* state, const Eigen::Isometry3d& goalLink) const;
 
  private:
+  /// The body's pose in the state, if any of its shapes can reach the box.
+  std::optional<Eigen::Isometry3d> poseIfNear(std::size_t body, const double* state,
+                                              const Eigen::Vector3d& boxCentre) const;
   bool occupies(std::size_t body, const double* state,
                 const std::vector<Eigen::Vector3d>& worldPoints,
                 const Eigen::Vector3d& boxCentre) const;

@@ -36,13 +36,22 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
   WorkspaceGoal(const ompl::base::SpaceInformationPtr& si,
                 std::shared_ptr<const WorldLayout> layout, GoalSpec spec);
 
-  /// How far a state is from the goal; also tracks the best seen, for progress. Metres for a
-  /// region (an approach error beyond its tolerance adds 0.1 m per radian), normalized joint
-  /// units for a configuration. The goal is reached at or below getThreshold().
+  /// searchDistance(); also tracks the best seen, for progress.
   double distanceGoal(const ompl::base::State* state) const override;
   /// Position and approach tolerances must both hold (the distance alone would trade them).
   bool isSatisfied(const ompl::base::State* state, double* distance) const override;
+  /// How far the gripper is from the goal: metres for a region (an approach or level error
+  /// beyond its tolerance adds 0.1 m per radian), normalized joint units for a configuration.
+  /// What plan, replay and validate report.
   double distance(const double* state) const;
+  /// distance() plus what still fills the free space at the goal pose (1 m for a box full
+  /// of objects): what planners search by, so that clearing a blocker counts as progress.
+  double searchDistance(const double* state) const;
+  /// The movable object that fills most of the free space at the goal pose (none when the
+  /// goal has no free space or it is clear).
+  std::optional<std::size_t> freeSpaceBlocker(const double* state) const;
+  /// The goal link at the goal point, turned as the approach and level axis ask.
+  const Eigen::Isometry3d& nominalGoalPose() const { return nominalGoalPose_; }
   bool reached(const double* state) const;
   /// Angle between the goal link's +z axis and the approach direction (0 without one).
   double approachError(const double* state) const;
@@ -64,6 +73,9 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
   std::shared_ptr<const WorldLayout> layout_;
   GoalSpec spec_;
   std::optional<GoalFreeSpace> freeSpace_;
+  /// The goal link at the goal point, turned as the approach and level axis ask (identity
+  /// turn without them): where the free space must be clear in the end.
+  Eigen::Isometry3d nominalGoalPose_ = Eigen::Isometry3d::Identity();
   mutable double best_ = std::numeric_limits<double>::infinity();
 };
 

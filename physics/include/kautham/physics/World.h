@@ -56,6 +56,9 @@ class World {
   const ContactParameters& contactParameters() const { return contact_; }
 
   void readState(double* state) const;
+  /// Also decides which objects sleep: exactly those whose velocities in `state` are all
+  /// zero, which is how ODE leaves an object it puts to sleep. So sleep is part of the state,
+  /// and a run from a written state repeats whatever ran before.
   void writeState(const double* state);
 
   /// Sets every motor's target velocity (one value per actuator, clamped to its limit).
@@ -85,6 +88,7 @@ class World {
   static void nearCallback(void* data, dGeomID a, dGeomID b);
   void collide(dGeomID a, dGeomID b);
   bool diverged() const;
+  static bool isAwake(dBodyID body);  ///< a body that steps (not asleep, not static geometry)
   void destroy();
   void restoreGeomOrder();
   /// Writes each actuated joint's position and rate (the state's joint part; no allocation:
@@ -103,6 +107,7 @@ class World {
   dJointGroupID contactGroup_ = nullptr;
   std::vector<dBodyID> bodies_;        ///< parallel to layout_.bodies
   std::vector<dGeomID> dynamicGeoms_;  ///< geometries on bodies, in creation order
+  std::vector<dBodyID> sleepers_;      ///< objects that may sleep (<Physics sleep>)
   std::vector<Actuator> actuators_;
   std::vector<std::unique_ptr<GeomTag>> tags_;
   /// Mesh arrays referenced (not copied) by ODE's geometries: they live as long as the world.

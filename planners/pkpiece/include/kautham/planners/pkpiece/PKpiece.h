@@ -71,6 +71,8 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   static std::size_t recordIndex(const Candidate& candidate, unsigned step);
   /// Ends a goal-reaching candidate at the step where most of its particles are in the goal.
   void settleInGoal(Candidate& candidate) const;
+  /// Without particles: ends a run through the goal where it comes nearest the goal point.
+  void settleNominalInGoal(Candidate& candidate) const;
   /// The belief cells and motion choice use: the path's or the motion's own (pathBelief).
   double selectionBelief(const Motion& motion) const;
   Grid::Coord cellOf(const std::vector<double>& state) const;
