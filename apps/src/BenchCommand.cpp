@@ -16,6 +16,7 @@
 #include "Commands.h"
 #include "OmplBenchmarkLog.h"
 #include "kautham/core/InputError.h"
+#include "kautham/planners/PluginLoader.h"
 
 namespace kautham::apps {
 
@@ -150,8 +151,8 @@ int runBench(const CLI::App& command, BenchOptions options) {
   const Preflight checked = preflight(spec);  // bad input stops here, before any run
   printPlan(spec, shard, options.jobs);
 
-  const BenchRunOptions run{options.output, options.jobs, shard,
-                            fs::read_symlink("/proc/self/exe")};
+  const BenchRunOptions run{options.output, options.jobs, shard, fs::read_symlink("/proc/self/exe"),
+                            planners::loadedPlugins()};
   const BenchSummary summary = runBenchmark(spec, checked, run);
   if (summary.interrupted) {
     fmt::print(

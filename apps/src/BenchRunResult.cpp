@@ -26,6 +26,12 @@ std::string statusName(int status) {
       .asString();
 }
 
+json plannerParameters(const RunEvidence& evidence) {
+  if (!evidence.planFile) return json::object();
+  const json& planner = evidence.planFile->at("planner");
+  return planner.contains("ompl_parameters") ? planner.at("ompl_parameters") : json::object();
+}
+
 }  // namespace
 
 json runSetup(const BenchSpec& spec, const RunKey& key, double timeLimit) {
@@ -78,7 +84,10 @@ json makeRunResult(const BenchSpec& spec, const RunKey& key, const json& setup,
           {"cpu_info", place.cpuInfo},
           {"started_at", place.startedAt},
           {"kautham_version", core::version()},
-          {"properties", runProperties(evidence)}};
+          {"properties", runProperties(evidence)},
+          // The planner's settings as its OMPL parameter set held them (the log's common
+          // properties); none when the plan child wrote no plan.
+          {"planner_parameters", plannerParameters(evidence)}};
 }
 
 json readRunResult(const fs::path& file) {

@@ -162,6 +162,7 @@ class BenchRunner {
     for (const std::string& dir : spec_.modelDirs)
       command.insert(command.end(), {"--model-dir", dir});
     command.insert(command.end(), {"-o", planFile(key).string()});
+    addPlugins(command);
     return command;
   }
 
@@ -178,7 +179,14 @@ class BenchRunner {
                                      validationFile(key).string()};
     for (const std::string& dir : spec_.modelDirs)
       command.insert(command.end(), {"--model-dir", dir});
+    addPlugins(command);
     return command;
+  }
+
+  /// The children load the plugins this process loaded, whichever way it found them.
+  void addPlugins(std::vector<std::string>& command) const {
+    for (const std::filesystem::path& plugin : options_.plugins)
+      command.insert(command.end(), {"--plugin", plugin.string()});
   }
 
   void startPlan(const RunKey& key) {

@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <vector>
 
 #include "BenchPreflight.h"
 #include "BenchSpec.h"
@@ -17,7 +18,8 @@ struct BenchRunOptions {
   std::filesystem::path output;  ///< OUT (see BenchLayout.h)
   std::size_t jobs = 1;          ///< runs at once
   Shard shard;
-  std::filesystem::path program;  ///< the kautham binary the children run
+  std::filesystem::path program;               ///< the kautham binary the children run
+  std::vector<std::filesystem::path> plugins;  ///< planner plugins the children load
 };
 
 struct BenchSummary {

@@ -138,11 +138,28 @@ std::string statusEnum() {
   return line;
 }
 
+/// The planner's settings, as OMPL's Benchmark takes them from Planner::params(): "name = value"
+/// lines, sorted by name. Every run of a configuration has the same; the first run that
+/// planned gives them (runs whose plan child wrote nothing have none).
+std::vector<std::string> commonProperties(const Planner& planner) {
+  std::vector<std::string> lines;
+  for (const json* run : planner.runs) {
+    const json parameters = run->value("planner_parameters", json::object());
+    if (parameters.empty()) continue;
+    for (const auto& [name, value] : parameters.items())
+      lines.push_back(name + " = " + value.get<std::string>());
+    break;
+  }
+  return lines;
+}
+
 void writePlanner(std::ostream& out, const Planner& planner) {
   std::set<std::string> properties;  // sorted, as OMPL sorts them
   for (const json* run : planner.runs)
     for (const auto& [name, value] : run->at("properties").items()) properties.insert(name);
-  out << planner.name << '\n' << "0 common properties\n";
+  const std::vector<std::string> common = commonProperties(planner);
+  out << planner.name << '\n' << common.size() << " common properties\n";
+  for (const std::string& line : common) out << line << '\n';
   out << properties.size() << " properties for each run\n";
   for (const std::string& p : properties) out << p << '\n';
   out << planner.runs.size() << " runs\n";

@@ -157,7 +157,9 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"planner",
        {{"name", request.planner},
         {"parameters", request.parameters.values()},
-        {"common", request.common.values()}}},
+        {"common", request.common.values()},
+        // What OMPL's parameter set of the planner held: its benchmark logs record these.
+        {"ompl_parameters", outcome.omplParameters}}},
       {"seed", request.seed},
       {"result",
        {{"solved", outcome.solved},

@@ -1,12 +1,17 @@
 // `kautham planners`: every registered planner with its parameters.
 
+#include <filesystem>
 #include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
 #include "Commands.h"
 #include "kautham/planners/PlanRequest.h"
 #include "kautham/planners/PlannerRegistry.h"
+#include "kautham/planners/PluginLoader.h"
 
 namespace kautham::apps {
 
@@ -35,15 +40,61 @@ void printParameters(const std::vector<core::ParameterSpec>& specs) {
   }
 }
 
+/// A markdown table cell: '|' would end it.
+std::string cell(const std::string& text) {
+  std::string escaped;
+  for (char c : text) escaped += c == '|' ? std::string("\\|") : std::string(1, c);
+  return escaped;
+}
+
+void printMarkdownTable(const std::vector<core::ParameterSpec>& specs) {
+  if (specs.empty()) {
+    fmt::print("No parameters of its own.\n");
+    return;
+  }
+  fmt::print("| parameter | type | default | range | also accepted | meaning |\n");
+  fmt::print("| --- | --- | --- | --- | --- | --- |\n");
+  for (const core::ParameterSpec& s : specs) {
+    const std::string range = s.type == core::ParameterType::Boolean
+                                  ? "true, false"
+                                  : "[" + s.formatValue(s.min) + ", " + s.formatValue(s.max) + "]";
+    std::string aliases;
+    for (const std::string& alias : s.aliases)
+      aliases += (aliases.empty() ? "" : ", ") + ("`" + alias + "`");
+    fmt::print("| `{}` | {} | {} | {} | {} | {} |\n", s.name, typeName(s.type),
+               s.formatValue(s.defaultValue), range, cell(aliases), cell(s.description));
+  }
+}
+
+/// The same as the text listing, as markdown: docs/planners.md holds it (scripts/planner-docs.py).
+void printMarkdown() {
+  fmt::print("### Every planner\n\n");
+  printMarkdownTable(planners::commonParameters());
+  for (const auto* entry : planners::plannerRegistry().entries()) {
+    fmt::print("\n### {}\n\n{}\n\n", entry->name, cell(entry->summary));
+    printMarkdownTable(entry->parameters);
+  }
+}
+
 }  // namespace
 
 void addPlannersCommand(CLI::App& app, int& exitCode) {
   CLI::App* command = app.add_subcommand("planners", "List the planners and their parameters");
-  command->callback([&exitCode] {
+  auto markdown = std::make_shared<bool>(false);
+  command->add_flag("--markdown", *markdown,
+                    "print markdown tables (docs/planners.md is made from them)");
+  command->callback([&exitCode, markdown] {
+    if (*markdown) {
+      printMarkdown();
+      exitCode = kExitSolved;
+      return;
+    }
     fmt::print("Parameters of every planner (set with --set NAME=VALUE or <Parameter name>):\n");
     printParameters(planners::commonParameters());
     for (const auto* entry : planners::plannerRegistry().entries()) {
       fmt::print("\n{}: {}\n", entry->name, entry->summary);
+      const std::filesystem::path plugin = planners::pluginOfPlanner(entry->name);
+      if (!plugin.empty()) fmt::print("    from plugin {}\n", plugin.string());
       printParameters(entry->parameters);
     }
     exitCode = kExitSolved;

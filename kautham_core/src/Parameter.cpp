@@ -22,6 +22,54 @@ std::string ParameterSpec::formatValue(double value) const {
   return text.str();
 }
 
+namespace {
+
+bool isSnakeCase(const std::string& name) {
+  if (name.empty() || !std::islower(static_cast<unsigned char>(name.front()))) return false;
+  return std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::islower(c) || std::isdigit(c) || c == '_';
+  });
+}
+
+bool isWhole(double value) { return std::isfinite(value) && value == std::floor(value); }
+
+}  // namespace
+
+void checkSpec(const ParameterSpec& spec) {
+  auto fail = [&](const std::string& what) {
+    throw std::logic_error("parameter '" + spec.name + "': " + what);
+  };
+  if (!isSnakeCase(spec.name)) fail("the name must be snake_case (a-z, 0-9, _)");
+  if (spec.description.empty()) fail("no description");
+  if (!(spec.min <= spec.max)) fail("its range has min > max (or is not a number)");
+  if (!(spec.min <= spec.defaultValue && spec.defaultValue <= spec.max))
+    fail("its default " + spec.formatValue(spec.defaultValue) + " is outside [" +
+         spec.formatValue(spec.min) + ", " + spec.formatValue(spec.max) + "]");
+  if (spec.type == ParameterType::Integer &&
+      !(isWhole(spec.defaultValue) && isWhole(spec.min) && isWhole(spec.max)))
+    fail("an integer's default and range are whole numbers");
+  if (spec.type == ParameterType::Boolean &&
+      (spec.min != 0.0 || spec.max != 1.0 || !isWhole(spec.defaultValue)))
+    fail("a flag's range is [0, 1] and its default 0 or 1");
+  for (const std::string& alias : spec.aliases)
+    if (alias.empty() || alias == spec.name) fail("an alias is empty or the name itself");
+}
+
+void checkSpecs(const std::vector<ParameterSpec>& specs) {
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    checkSpec(specs[i]);
+    for (std::size_t j = 0; j < i; ++j) {
+      const ParameterSpec& earlier = specs[j];
+      if (earlier.answersTo(specs[i].name))
+        throw std::logic_error("parameter '" + specs[i].name + "' is declared twice");
+      for (const std::string& alias : specs[i].aliases)
+        if (earlier.answersTo(alias))
+          throw std::logic_error("parameters '" + earlier.name + "' and '" + specs[i].name +
+                                 "' both answer to '" + alias + "'");
+    }
+  }
+}
+
 ParameterSet::ParameterSet(std::vector<ParameterSpec> specs) : specs_(std::move(specs)) {
   for (const ParameterSpec& s : specs_) values_[s.name] = s.defaultValue;
 }

@@ -8,43 +8,36 @@
 namespace kautham::planners {
 
 std::vector<core::ParameterSpec> commonParameters() {
-  using core::ParameterType;
+  using core::Parameter;
   return {
-      {"time_limit",
-       ParameterType::Real,
-       30.0,
-       0.01,
-       86400.0,
-       "seconds of planning before giving up",
-       {"_Max Planning Time", "Max Planning Time", "timeLimit"}},
-      {"propagation_step_size",
-       ParameterType::Real,
-       0.05,
-       0.0001,
-       10.0,
-       "seconds per propagation step (a whole number of physics steps)",
-       {"PropagationStepSize"}},
-      {"min_control_steps",
-       ParameterType::Integer,
-       2,
-       1,
-       100000,
-       "fewest propagation steps a control is held",
-       {"Min Control Steps"}},
-      {"max_control_steps",
-       ParameterType::Integer,
-       20,
-       1,
-       100000,
-       "most propagation steps a control is held",
-       {"Max Control Steps"}},
-      {"threads",
-       ParameterType::Integer,
-       1,
-       1,
-       64,
-       "processes for p-KPIECE's particles (the plan does not depend on it); others ignore it",
-       {"Threads"}},
+      Parameter::real("time_limit")
+          .byDefault(30.0)
+          .range(0.01, 86400.0)
+          .describe("seconds of planning before giving up")
+          .alias("_Max Planning Time")
+          .alias("Max Planning Time")
+          .alias("timeLimit"),
+      Parameter::real("propagation_step_size")
+          .byDefault(0.05)
+          .range(0.0001, 10.0)
+          .describe("seconds per propagation step (a whole number of physics steps)")
+          .alias("PropagationStepSize"),
+      Parameter::integer("min_control_steps")
+          .byDefault(2)
+          .range(1, 100000)
+          .describe("fewest propagation steps a control is held")
+          .alias("Min Control Steps"),
+      Parameter::integer("max_control_steps")
+          .byDefault(20)
+          .range(1, 100000)
+          .describe("most propagation steps a control is held")
+          .alias("Max Control Steps"),
+      Parameter::integer("threads")
+          .byDefault(1)
+          .range(1, 64)
+          .describe("worker processes for p-KPIECE's particles (the plan does not depend on "
+                    "it); others ignore it")
+          .alias("Threads"),
   };
 }
 

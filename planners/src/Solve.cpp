@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/base/PlannerTerminationCondition.h>
@@ -13,6 +14,7 @@
 #include "kautham/planners/BeliefReporter.h"
 #include "kautham/planners/BeliefVertex.h"
 #include "kautham/planners/ParallelPlanner.h"
+#include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/PlannerRegistry.h"
 
 namespace kautham::planners {
@@ -86,11 +88,19 @@ std::uint32_t seedRandomness(std::uint32_t seed) {
   return seed;
 }
 
-PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
-                  const SolveHooks& hooks) {
+ompl::base::PlannerPtr makePlanner(physics::PlanningContext& context, const PlanRequest& request) {
   const PlannerRegistry::Entry& entry = plannerRegistry().at(request.planner);
   context.usePlanningRules(physics::ValidityRules::Full);  // a planner may narrow them
   ompl::base::PlannerPtr planner = entry.create(request.parameters, context);
+  if (!planner) throw std::logic_error("planner " + request.planner + " made no planner");
+  declareOmplParameters(*planner, request.parameters);
+  declareOmplParameters(*planner, request.common);
+  return planner;
+}
+
+PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
+                  const SolveHooks& hooks) {
+  ompl::base::PlannerPtr planner = makePlanner(context, request);
   context.problemDefinition()->clearSolutionPaths();
   context.goal().resetBestDistance();
   planner->setProblemDefinition(context.problemDefinition());
@@ -113,6 +123,7 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
   planner->getPlannerData(data);
   outcome.statistics.treeStates = data.numVertices();
   outcome.tree = treeOf(data, context);
+  planner->params().getParams(outcome.omplParameters);
   for (const auto& [name, value] : planner->getPlannerProgressProperties())
     if (name.rfind("iterations", 0) != 0)  // not all planners count them the same way
       outcome.statistics.plannerProperties.emplace_back(name.substr(0, name.find(' ')), value());

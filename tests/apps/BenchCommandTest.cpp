@@ -81,6 +81,14 @@ TEST_F(BenchCommandTest, LogBecomesAPlannerArenaDatabase) {
   EXPECT_EQ(query(db, "SELECT name, runcount, timelimit, version FROM experiments"),
             "pusher_free|2|5.0|OMPL 1.5.2\n");
   EXPECT_EQ(query(db, "SELECT name FROM plannerConfigs ORDER BY id"), "KPgb\nKPIECE\n");
+  // Each configuration's settings are what the planner's OMPL parameter set held: OMPL's own
+  // parameters and ours (cell_size, the common ones), with the values the runs used.
+  const std::string settings = query(db, "SELECT settings FROM plannerConfigs ORDER BY id");
+  for (const char* expected :
+       {"goal_bias = 0.3\n;", "goal_bias = 0.05\n;", "border_fraction = 0.8\n;",
+        "max_close_samples = 30\n;", "cell_size = 0.05\n;", "time_limit = 5\n;",
+        "propagation_step_size = 0.05\n;"})
+    EXPECT_NE(settings.find(expected), std::string::npos) << expected << " in " << settings;
   // One row per run, in run order, with OMPL's columns and ours.
   EXPECT_EQ(query(db,
                   "SELECT p.name, r.seed, r.solved, r.status, r.approximate_solution, "
@@ -249,8 +257,14 @@ TEST_F(BenchCommandTest, FileNamesProblemsRelativeToItself) {
   EXPECT_EQ(result["setup"]["set"], json::array({"goal_bias=0.1"}));
   const std::string log = test::readFile(folder / "out/logs/pusher_free.log");
   EXPECT_NE(log.find("Experiment tiny/pusher_free\n"), std::string::npos) << log;
-  EXPECT_NE(log.find("\nKPIECE\n0 common properties\n"), std::string::npos) << log;
-  EXPECT_NE(log.find("\nRRT-gb\n0 common properties\n"), std::string::npos) << log;
+  // Each planner's settings: its OMPL parameters, sorted by name, with the run's values.
+  EXPECT_NE(log.find("\nKPIECE\n11 common properties\nbad_score_factor = 0.45\n"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("\nRRT-gb\n7 common properties\ngoal_bias = 0.1\n"
+                     "intermediate_states = 0\nmax_control_steps = 20\n"),
+            std::string::npos)
+      << log;
 }
 
 /// Starts `kautham ARGUMENTS` from the repository's root with its output in a file.

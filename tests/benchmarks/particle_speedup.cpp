@@ -3,8 +3,11 @@
 // the physics (time inside World::step over the planning time, in one single-process run).
 // Scene: problems/kuka_cans_10.xml. See docs/performance.md, "Parallel particles".
 //
-// World::step is timed by wrapping it at link time (-Wl,--wrap, see tests/CMakeLists.txt): the
-// physics library is not instrumented.
+// World::step is timed by interposing it: this program defines the symbol (and exports it,
+// see tests/CMakeLists.txt), so the physics library's calls reach the definition here, which
+// forwards to the library's own (dlsym RTLD_NEXT). The physics library is not instrumented.
+
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <chrono>
@@ -18,10 +21,10 @@
 #include <CLI/CLI.hpp>
 
 #include "kautham/core/ProblemLoader.h"
-#include "kautham/planners/MotionEvaluator.h"
-#include "kautham/planners/ParticleWorkers.h"
 #include "kautham/planners/PlanRequest.h"
 #include "kautham/planners/Solve.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/ParticleWorkers.h"
 
 namespace {
 
@@ -35,10 +38,12 @@ std::uint64_t stepCalls = 0;
 
 extern "C" {
 // kautham::physics::World::step(), as the linker names it; `this` is the first argument.
-void __real__ZN7kautham7physics5World4stepEv(kautham::physics::World* world);
-void __wrap__ZN7kautham7physics5World4stepEv(kautham::physics::World* world) {
+void _ZN7kautham7physics5World4stepEv(kautham::physics::World* world) {
+  using Step = void (*)(kautham::physics::World*);
+  static const Step real =
+      reinterpret_cast<Step>(::dlsym(RTLD_NEXT, "_ZN7kautham7physics5World4stepEv"));
   const Clock::time_point start = Clock::now();
-  __real__ZN7kautham7physics5World4stepEv(world);
+  real(world);
   stepNanoseconds += static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - start).count());
   ++stepCalls;

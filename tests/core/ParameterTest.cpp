@@ -180,6 +180,151 @@ TEST(ParameterSpec, AnswersToItsNameAndAliasesOnly) {
   EXPECT_EQ(someSpecs()[2].formatValue(0), "false");
 }
 
+// ----- Parameter (named builders) and checkSpec -----
+
+TEST(Parameter, BuildsTheSpecItNames) {
+  const ParameterSpec real = Parameter::real("goal_bias")
+                                 .byDefault(0.05)
+                                 .range(0.0, 1.0)
+                                 .describe("chance of sampling the goal")
+                                 .alias("Goal Bias")
+                                 .alias("goalBias");
+  EXPECT_EQ(real.name, "goal_bias");
+  EXPECT_EQ(real.type, ParameterType::Real);
+  EXPECT_DOUBLE_EQ(real.defaultValue, 0.05);
+  EXPECT_DOUBLE_EQ(real.min, 0.0);
+  EXPECT_DOUBLE_EQ(real.max, 1.0);
+  EXPECT_EQ(real.description, "chance of sampling the goal");
+  EXPECT_EQ(real.aliases, (std::vector<std::string>{"Goal Bias", "goalBias"}));
+
+  const ParameterSpec integer =
+      Parameter::integer("max_steps").byDefault(20).range(1, 1000).describe("most steps");
+  EXPECT_EQ(integer.type, ParameterType::Integer);
+  EXPECT_DOUBLE_EQ(integer.max, 1000);
+
+  const ParameterSpec flag = Parameter::flag("use_projection").byDefault(1).describe("project");
+  EXPECT_EQ(flag.type, ParameterType::Boolean);
+  EXPECT_DOUBLE_EQ(flag.min, 0.0);  // a flag's range needs no saying
+  EXPECT_DOUBLE_EQ(flag.max, 1.0);
+  EXPECT_NO_THROW(checkSpecs({real, integer, flag}));
+}
+
+TEST(Parameter, BuildersDoNotChangeWhatTheyStartFrom) {
+  const Parameter base = Parameter::real("x").range(0, 1).describe("an x");
+  const ParameterSpec a = base.byDefault(0.25);
+  const ParameterSpec b = base.byDefault(0.75);
+  EXPECT_DOUBLE_EQ(a.defaultValue, 0.25);
+  EXPECT_DOUBLE_EQ(b.defaultValue, 0.75);
+}
+
+/// Expects checkSpecs to reject the specs with a message containing `phrase`.
+void expectRejected(const std::vector<ParameterSpec>& specs, const std::string& phrase) {
+  try {
+    checkSpecs(specs);
+    ADD_FAILURE() << "accepted; expected: " << phrase;
+  } catch (const std::logic_error& error) {
+    EXPECT_NE(std::string(error.what()).find(phrase), std::string::npos) << error.what();
+  }
+}
+
+TEST(Parameter, MalformedSpecsAreRejectedByName) {
+  const Parameter ok = Parameter::real("x").byDefault(0.5).range(0, 1).describe("an x");
+  expectRejected({ok.byDefault(2)}, "'x': its default 2 is outside [0, 1]");
+  expectRejected({ok.range(1, 0)}, "min > max");
+  expectRejected({ok.describe("")}, "'x': no description");
+  expectRejected({Parameter::real("Goal Bias").range(0, 1).describe("d")}, "snake_case");
+  expectRejected({Parameter::integer("n").byDefault(1.5).range(0, 3).describe("d")},
+                 "whole numbers");
+  expectRejected({Parameter::flag("f").byDefault(1).range(0, 2).describe("d")}, "a flag's range");
+  expectRejected({ok, Parameter::real("x").range(0, 1).describe("again")}, "'x' is declared twice");
+  expectRejected({ok.alias("k"), Parameter::integer("n").range(0, 3).describe("d").alias("k")},
+                 "both answer to 'k'");
+  expectRejected({ok.alias("x")}, "the name itself");
+}
+
+TEST(FactoryRegistry, AddRejectsMalformedParameters) {
+  FactoryRegistry<int> registry;
+  try {
+    registry.add({"broken",
+                  "a broken entry",
+                  {Parameter::real("x").byDefault(3).range(0, 1).describe("an x")},
+                  [](const ParameterSet&) { return 1; }});
+    ADD_FAILURE() << "a default outside its range was registered";
+  } catch (const std::logic_error& error) {
+    EXPECT_NE(std::string(error.what()).find("'broken': parameter 'x'"), std::string::npos)
+        << error.what();
+  }
+  EXPECT_EQ(registry.find("broken"), nullptr);
+  EXPECT_THROW(registry.add({"", "no name", {}, [](const ParameterSet&) { return 1; }}),
+               std::logic_error);
+  EXPECT_THROW(registry.add({"nofactory", "no factory", {}, nullptr}), std::logic_error);
+}
+
+// ----- SettingsParameters: one declaration per field, no copy by hand -----
+
+struct DemoSettings {
+  double bias;
+  unsigned candidates;
+  int offset;
+  bool verbose;
+};
+
+SettingsParameters<DemoSettings> demoTable() {
+  return SettingsParameters<DemoSettings>()
+      .add(&DemoSettings::bias,
+           Parameter::real("bias").byDefault(0.2).range(0, 1).describe("a bias").alias("b"))
+      .add(&DemoSettings::candidates,
+           Parameter::integer("candidates").byDefault(5).range(1, 100).describe("k").alias("k"))
+      .add(&DemoSettings::offset,
+           Parameter::integer("offset").byDefault(-3).range(-10, 10).describe("an offset"))
+      .add(&DemoSettings::verbose, Parameter::flag("verbose").byDefault(0).describe("talk"))
+      .add(Parameter::real("cell_size").byDefault(0.05).range(0.001, 1).describe("no field"));
+}
+
+TEST(SettingsParameters, ListsTheSpecsInDeclarationOrder) {
+  const auto table = demoTable();
+  std::vector<std::string> names;
+  for (const ParameterSpec& spec : table.specs()) names.push_back(spec.name);
+  EXPECT_EQ(names,
+            (std::vector<std::string>{"bias", "candidates", "offset", "verbose", "cell_size"}));
+}
+
+TEST(SettingsParameters, FillsEveryFieldFromTheValues) {
+  const auto table = demoTable();
+  const DemoSettings defaults = table.defaults();
+  EXPECT_DOUBLE_EQ(defaults.bias, 0.2);
+  EXPECT_EQ(defaults.candidates, 5u);
+  EXPECT_EQ(defaults.offset, -3);
+  EXPECT_FALSE(defaults.verbose);
+
+  ParameterSet values(table.specs());
+  values.set("b", "0.125");
+  values.set("k", "9");
+  values.set("offset", "7");
+  values.set("verbose", "true");
+  const DemoSettings set = table.read(values);
+  EXPECT_DOUBLE_EQ(set.bias, 0.125);
+  EXPECT_EQ(set.candidates, 9u);
+  EXPECT_EQ(set.offset, 7);
+  EXPECT_TRUE(set.verbose);
+}
+
+TEST(SettingsParameters, FieldTypeMustMatchTheParameterType) {
+  SettingsParameters<DemoSettings> table;
+  EXPECT_THROW(table.add(&DemoSettings::bias,
+                         Parameter::integer("bias").byDefault(1).range(0, 2).describe("d")),
+               std::logic_error);
+  EXPECT_THROW(table.add(&DemoSettings::verbose,
+                         Parameter::real("verbose").byDefault(0).range(0, 1).describe("d")),
+               std::logic_error);
+  EXPECT_THROW(table.add(&DemoSettings::candidates,
+                         Parameter::integer("candidates").byDefault(0).range(-1, 2).describe("d")),
+               std::logic_error);  // an unsigned field cannot take -1
+  EXPECT_THROW(demoTable().add(&DemoSettings::offset,
+                               Parameter::integer("bias").range(0, 1).describe("twice")),
+               std::logic_error);
+}
+
 // ----- FactoryRegistry -----
 
 /// A registry whose products are strings built from a parameter and an extra argument.

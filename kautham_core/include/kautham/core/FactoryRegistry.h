@@ -25,9 +25,19 @@ class FactoryRegistry {
     Factory create;
   };
 
-  /// Adds an entry; a second entry with the same name is a programming error.
+  /// Adds an entry. A second entry with the same name, an entry without a name, summary or
+  /// factory, and malformed or clashing parameter specs (checkSpecs) are programming errors:
+  /// std::logic_error naming the entry.
   void add(Entry entry) {
     const std::string key = entry.name;
+    if (key.empty() || entry.summary.empty() || !entry.create)
+      throw std::logic_error("registry: an entry needs a name, a summary and a factory ('" + key +
+                             "')");
+    try {
+      checkSpecs(entry.parameters);
+    } catch (const std::logic_error& e) {
+      throw std::logic_error("registry: '" + key + "': " + e.what());
+    }
     if (!entries_.emplace(key, std::move(entry)).second)
       throw std::logic_error("registry: '" + key + "' is registered twice");
   }

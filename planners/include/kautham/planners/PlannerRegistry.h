@@ -11,13 +11,8 @@ namespace kautham::planners {
 /// over a planning context (the physics of one query).
 using PlannerRegistry = core::FactoryRegistry<ompl::base::PlannerPtr, physics::PlanningContext&>;
 
-/// The registry with every built-in planner registered.
+/// The registry with every built-in planner registered (the list is in PlannerRegistry.cpp),
+/// and the planners of the plugins loaded so far (PluginLoader.h).
 PlannerRegistry& plannerRegistry();
-
-/// Registers OMPL's control planners (KPIECE, RRT) over our physics.
-void registerOmplControlPlanners(PlannerRegistry& registry);
-
-/// Registers p-KPIECE and o-KPIECE (the paper's planner and its baseline).
-void registerKpieceFamily(PlannerRegistry& registry);
 
 }  // namespace kautham::planners

@@ -2,7 +2,11 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <string>
 #include <vector>
+
+#include <ompl/base/Planner.h>
 
 #include "kautham/physics/Replay.h"
 #include "kautham/planners/PlanRequest.h"
@@ -48,11 +52,19 @@ struct PlanOutcome {
   std::vector<double> beliefs;  ///< per control, when the planner judges robustness (p-KPIECE)
   PlanStatistics statistics;
   SearchTree tree;
+  /// The planner's OMPL parameter set after setup, name -> value: every parameter of the
+  /// request (see makePlanner), as OMPL's benchmark tools record planner settings.
+  std::map<std::string, std::string> omplParameters;
 };
 
 /// Seeds every random number generator the planners use (OMPL's), before anything samples.
 /// Seed 0 means "pick one": the seed in use is returned either way.
 std::uint32_t seedRandomness(std::uint32_t seed);
+
+/// The requested planner from the registry, made over the context (full validity rules unless
+/// the planner narrows them) with the request's values. Every parameter, the planner's own and
+/// the common ones, is on its OMPL parameter set (declareParam), with its value.
+ompl::base::PlannerPtr makePlanner(physics::PlanningContext& context, const PlanRequest& request);
 
 /// Runs the requested planner on a context until it solves, the time limit passes or
 /// `hooks.stop` says so. Deterministic for a seed when it solves before the limit.

@@ -1,0 +1,183 @@
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+
+#include <algorithm>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "kautham/physics/WorldStateSpace.h"
+
+namespace kautham::planners {
+
+MotionEvaluator::MotionEvaluator(physics::PlanningContext& context, double maxDisplacement)
+    : context_(context),
+      sampler_(context.problem(), context.layout()),
+      maxDisplacement_(maxDisplacement),
+      runner_(context),
+      stateSize_(runner_.stateSize()),
+      controlSize_(runner_.controlSize()) {
+  const auto& bodies = context.layout().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (bodies[b].role != physics::BodyRole::Robot) objectBodies_.push_back(b);
+}
+
+MotionEvaluator::~MotionEvaluator() = default;
+
+void MotionEvaluator::useWorkers(unsigned threads) {
+  workers_.reset();
+  if (threads > 1) workers_ = std::make_unique<ParticleWorkers>(runner_, threads - 1);
+}
+
+ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion& motion,
+                                        bool throughGoal) const {
+  ParticleJob job;
+  job.start.assign(start, start + stateSize_);
+  job.control = motion.control;
+  job.steps = motion.steps;
+  job.contact = context_.world().contactParameters();
+  job.targetReference = context_.validityChecker().targetStart();
+  for (unsigned s = 1; s <= motion.steps; ++s) job.recordAfter.push_back(s);
+  job.goalStop = throughGoal ? GoalStop::Leaving : GoalStop::Entering;
+  return job;
+}
+
+NominalRun MotionEvaluator::nominalRun(const double* start, ParticleResult&& result) const {
+  NominalRun run;
+  run.steps = static_cast<unsigned>(result.recorded.size());
+  run.states = std::move(result.recorded);
+  run.end = run.states.empty() ? std::vector<double>(start, start + stateSize_) : run.states.back();
+  run.goalFrom = result.goalFrom;
+  run.reachedGoal = result.goalFrom > 0;
+  return run;
+}
+
+NominalRun MotionEvaluator::runNominal(const double* start, const double* control, unsigned steps,
+                                       bool throughGoal) {
+  const NominalMotion motion{std::vector<double>(control, control + controlSize_), steps};
+  return nominalRun(start, runner_.run(nominalJob(start, motion, throughGoal)));
+}
+
+std::vector<NominalRun> MotionEvaluator::runNominals(const double* start,
+                                                     const std::vector<NominalMotion>& motions,
+                                                     bool throughGoal) {
+  std::vector<ParticleJob> jobs;
+  for (const NominalMotion& motion : motions)
+    jobs.push_back(nominalJob(start, motion, throughGoal));
+  std::vector<ParticleResult> results = runJobs(jobs);
+  std::vector<NominalRun> runs;
+  for (ParticleResult& result : results) runs.push_back(nominalRun(start, std::move(result)));
+  return runs;
+}
+
+Eigen::Vector3d MotionEvaluator::targetPosition(const double* state) const {
+  // A particle's target stands where its start was sampled; without a target nothing drifts.
+  const auto target = context_.validityChecker().targetBody();
+  return target ? physics::WorldLayout::position(state, *target)
+                : context_.validityChecker().targetStart();
+}
+
+bool MotionEvaluator::displacementWithinLimit(const double* start, const double* end) const {
+  for (std::size_t b : objectBodies_) {
+    const Eigen::Vector3d a = physics::WorldLayout::position(start, b);
+    const Eigen::Vector3d c = physics::WorldLayout::position(end, b);
+    if ((c - a).norm() > maxDisplacement_) return false;
+  }
+  return true;
+}
+
+ParticleVerdict MotionEvaluator::judgeNominal(const double* start, const double* end) const {
+  ParticleVerdict verdict;
+  verdict.interaction = displacementWithinLimit(start, end) ? 1.0 : 0.0;
+  return verdict;
+}
+
+std::vector<ParticleJob> MotionEvaluator::particleJobs(const ParticleRequest& request) const {
+  std::vector<ParticleJob> jobs(request.particles);
+  for (unsigned p = 0; p < request.particles; ++p) {
+    ParticleJob& job = jobs[p];
+    std::mt19937_64 rng(request.streamSeed + p);
+    job.start.assign(request.start, request.start + stateSize_);
+    if (request.robots) request.robots->apply(p, job.start.data());
+    request.poses->samplePoses(job.start.data(), rng);
+    job.contact = sampler_.sampleContact(rng);
+    job.control.resize(controlSize_);
+    sampler_.perturbControl(request.control, job.control.data(), controlSize_, rng);
+    job.steps = request.steps;
+    job.targetReference = targetPosition(job.start.data());
+    job.recordAfter = request.recordAfter;
+  }
+  return jobs;
+}
+
+std::vector<ParticleResult> MotionEvaluator::runJobs(const std::vector<ParticleJob>& jobs) {
+  if (workers_) return workers_->run(jobs);
+  std::vector<ParticleResult> results;
+  results.reserve(jobs.size());
+  for (const ParticleJob& job : jobs) results.push_back(runner_.run(job));
+  return results;
+}
+
+ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, double toBeat) {
+  ParticleVerdict verdict;
+  const unsigned particles = request.particles;
+  verdict.particles = particles;
+  if (particles == 0) return verdict;
+  const std::vector<ParticleJob> jobs = particleJobs(request);
+  physics::World& world = context_.world();
+  const physics::ContactParameters mean = world.contactParameters();
+  const std::size_t batch = threads();  // more than kParticleBatch processes: keep all busy
+  std::size_t ran = 0;
+  try {
+    while (ran < jobs.size()) {
+      const std::size_t end = std::min(jobs.size(), ran + std::max(kParticleBatch, batch));
+      std::vector<ParticleResult> results =
+          runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
+      for (std::size_t p = ran; p < end; ++p)
+        addOutcome(verdict, jobs[p].start.data(), std::move(results[p - ran]));
+      ran = end;
+      // Every remaining particle valid is the best case; computed as belief() computes, so
+      // that equal counts round equally and a pruned candidate could at most tie.
+      const auto bestFraction = [&](const std::vector<char>& flags) {
+        const auto count = std::count(flags.begin(), flags.end(), 1);
+        return static_cast<double>(count + (jobs.size() - ran)) / particles;
+      };
+      const double bound = bestFraction(verdict.endValid) * bestFraction(verdict.endInteractionOk);
+      if (ran < jobs.size() && bound <= toBeat) {
+        verdict.pruned = true;
+        break;
+      }
+    }
+  } catch (...) {
+    world.setContactParameters(mean);
+    throw;
+  }
+  world.setContactParameters(mean);
+  particleCount_ += ran;
+  verdict.tally();
+  return verdict;
+}
+
+void MotionEvaluator::addOutcome(ParticleVerdict& verdict, const double* start,
+                                 ParticleResult&& result) const {
+  // The pre-grasp pose follows the target: a particle whose target was sampled elsewhere must
+  // reach the goal around it, as an execution in `kautham validate` must.
+  const std::unique_ptr<physics::WorkspaceGoal> moved = context_.goalForStart(start);
+  const physics::WorkspaceGoal& goal = moved ? *moved : context_.goal();
+  const auto judge = [&](const std::vector<double>& state, bool valid, auto& interactionOk,
+                         auto& inGoal) {
+    const bool ok = displacementWithinLimit(start, state.data());
+    interactionOk.push_back(ok);
+    inGoal.push_back(valid && ok && goal.reached(state.data()));
+  };
+  judge(result.end, result.valid, verdict.endInteractionOk, verdict.endInGoal);
+  verdict.endValid.push_back(result.valid);
+  std::vector<char> recordedInGoal;
+  std::vector<char> recordedInteractionOk;
+  for (const std::vector<double>& state : result.recorded)
+    judge(state, true, recordedInteractionOk, recordedInGoal);
+  verdict.ends.push_back(std::move(result.end));
+  verdict.recorded.push_back(std::move(result.recorded));
+  verdict.recordedInGoal.push_back(std::move(recordedInGoal));
+  verdict.recordedInteractionOk.push_back(std::move(recordedInteractionOk));
+}
+
+}  // namespace kautham::planners

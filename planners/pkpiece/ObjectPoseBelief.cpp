@@ -1,0 +1,62 @@
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
+
+namespace kautham::planners {
+
+namespace {
+// An object that moved less than this in every outcome kept its pose: its distribution stays.
+constexpr double kMovedThreshold = 0.001;  // m
+}  // namespace
+
+std::shared_ptr<const ObjectPoseBelief> ObjectPoseBelief::initial(
+    const physics::WorldLayout& layout, const physics::UncertaintySampler& sampler,
+    const double* start) {
+  auto belief = std::make_shared<ObjectPoseBelief>();
+  belief->perBody_.resize(layout.bodies.size());
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    if (layout.bodies[b].role == physics::BodyRole::Robot) continue;
+    const core::PoseUncertainty& u = sampler.initialUncertainty(b);
+    if (u.x <= 0.0 && u.y <= 0.0 && u.yaw <= 0.0) continue;
+    // A zero deviation on one axis becomes the mixture's floor: a thousandth of a unit.
+    const Eigen::Vector3d sd(std::max(u.x, 1e-4), std::max(u.y, 1e-4), std::max(u.yaw, 1e-4));
+    belief->perBody_[b] = GaussianMixture::single(physics::planarPose(start, b), sd);
+  }
+  return belief;
+}
+
+void ObjectPoseBelief::samplePoses(double* state, std::mt19937_64& rng) const {
+  for (std::size_t b = 0; b < perBody_.size(); ++b)
+    if (perBody_[b]) physics::setPlanarPose(state, b, perBody_[b]->sample(rng));
+}
+
+std::shared_ptr<const ObjectPoseBelief> ObjectPoseBelief::afterMotion(
+    const std::vector<std::size_t>& objectBodies, const double* nominalStart,
+    const double* nominalEnd, const std::vector<std::vector<double>>& particleEnds,
+    std::mt19937_64& rng) const {
+  auto next = std::make_shared<ObjectPoseBelief>(*this);
+  for (std::size_t b : objectBodies) {
+    const Eigen::Vector3d before = physics::planarPose(nominalStart, b);
+    std::vector<PlanarPose> outcomes{physics::planarPose(nominalEnd, b)};
+    for (const std::vector<double>& end : particleEnds)
+      outcomes.push_back(physics::planarPose(end.data(), b));
+    bool moved = false;
+    for (const PlanarPose& p : outcomes)
+      moved = moved || (p.head<2>() - before.head<2>()).norm() > kMovedThreshold;
+    if (!moved) continue;
+    if (next->perBody_.size() <= b) next->perBody_.resize(b + 1);  // a belief made certain
+    if (outcomes.size() < 2) {
+      // No particles (planning without uncertainty): the object is where the motion put it.
+      next->perBody_[b].reset();
+      continue;
+    }
+    next->perBody_[b] = GaussianMixture::fit(outcomes, rng);
+  }
+  return next;
+}
+
+std::vector<std::size_t> ObjectPoseBelief::componentCounts() const {
+  std::vector<std::size_t> counts;
+  for (const auto& mixture : perBody_) counts.push_back(mixture ? mixture->components().size() : 0);
+  return counts;
+}
+
+}  // namespace kautham::planners

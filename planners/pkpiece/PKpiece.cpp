@@ -1,0 +1,538 @@
+#include "kautham/planners/pkpiece/PKpiece.h"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+#include <ompl/base/PlannerData.h>
+#include <ompl/control/PathControl.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+#include <ompl/datastructures/PDF.h>
+
+#include "kautham/physics/WorldStateSpace.h"
+#include "kautham/planners/BeliefVertex.h"
+
+namespace kautham::planners {
+
+namespace {
+// Cell scores as in KPIECE: an expansion that adds a motion keeps most of the cell's score,
+// one that fails halves it, so cells that stop producing fade.
+constexpr double kGoodScoreFactor = 0.9;
+constexpr double kBadScoreFactor = 0.45;
+constexpr std::size_t kNearestKept = 30;  // motions nearest the goal kept for the goal bias
+}  // namespace
+
+struct PKpiece::Motion {
+  ompl::base::State* state = nullptr;  ///< the state at the motion's end
+  std::vector<double> control;
+  unsigned steps = 0;
+  Motion* parent = nullptr;
+  double belief = 1.0;      ///< b of the candidate it came from
+  double pathBelief = 1.0;  ///< product of the candidates' beliefs from the root to here
+  std::shared_ptr<const ObjectPoseBelief> poses;
+  std::shared_ptr<const RobotSpread> robotSpread;  ///< null: particles start as the state
+  unsigned expansion = 0;  ///< the iteration that added it: its pieces share the number
+  double goalDistance = 0.0;
+  CellData* cell = nullptr;
+  bool reachesGoal = false;  ///< ends a plan estimated to succeed often enough (goalConfidence)
+};
+
+struct PKpiece::CellData {
+  std::vector<Motion*> motions;  ///< oldest first
+  unsigned selections = 1;       ///< C: times the cell was chosen for expansion
+  double score = 1.0;            ///< exploration progress
+  unsigned iteration = 1;        ///< I: the iteration that created the cell
+  double beliefSum = 0.0;        ///< sum of the beliefs of its motions
+  double importance = 0.0;
+  unsigned neighbors = 0;
+  double meanBelief() const { return motions.empty() ? 0.0 : beliefSum / motions.size(); }
+};
+
+struct PKpiece::Candidate {
+  std::vector<double> control;
+  NominalRun run;
+  std::vector<unsigned> pieceEnds;  ///< steps after which the motion is cut (see expand)
+  /// Steps after which its particles' states are kept: the piece ends, and every step the
+  /// nominal run spent in the goal.
+  std::vector<unsigned> recordAfter;
+  std::uint64_t streamSeed = 0;  ///< its particles' random streams
+  double fromPathBelief = 1.0;   ///< the path belief of the motion it grows from
+  bool judged = false;           ///< verdict holds its particles' (possibly pruned) say
+  ParticleVerdict verdict;
+};
+
+bool PKpiece::ByImportance::operator()(const CellData* a, const CellData* b) const {
+  return a->importance > b->importance;
+}
+
+PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& settings)
+    : ompl::base::Planner(context.spaceInformation(), "p-KPIECE"),
+      context_(context),
+      settings_(settings),
+      evaluator_(context, settings.displacement),
+      fitRng_(rng_.uniformInt(0, std::numeric_limits<int>::max())),
+      streamBase_(static_cast<std::uint64_t>(rng_.uniformInt(0, std::numeric_limits<int>::max()))
+                  << 20),
+      grid_(context.projection().getDimension()),
+      robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
+      steering_(context, evaluator_) {
+  specs_.approximateSolutions = true;
+  scratch_ = si_->allocState();
+  grid_.onCellUpdate(&PKpiece::computeImportance, this);
+  addPlannerProgressProperty("cells INTEGER", [this] { return std::to_string(cells_.size()); });
+  addPlannerProgressProperty("candidates INTEGER",
+                             [this] { return std::to_string(candidateCount_); });
+  // How near the search came to ending: candidates that entered the goal, and the best
+  // estimated success among them (goal_confidence is what ends the search).
+  addPlannerProgressProperty("goal_candidates INTEGER",
+                             [this] { return std::to_string(goalCandidates_); });
+  addPlannerProgressProperty("best_goal_confidence REAL", [this] {
+    return goalCandidates_ == 0 ? std::string("nan") : std::to_string(bestGoalConfidence_);
+  });
+  addPlannerProgressProperty("particles INTEGER",
+                             [this] { return std::to_string(evaluator_.particleCount()); });
+  addPlannerProgressProperty("mean_solution_belief REAL", [this] {
+    if (solutionBeliefs_.empty()) return std::string("nan");
+    double sum = 0.0;
+    for (double b : solutionBeliefs_) sum += b;
+    return std::to_string(sum / solutionBeliefs_.size());
+  });
+  addPlannerProgressProperty("solution_path_belief REAL", [this] {
+    return solutionBeliefs_.empty() ? std::string("nan") : std::to_string(solutionPathBelief_);
+  });
+}
+
+PKpiece::~PKpiece() {
+  clear();
+  si_->freeState(scratch_);
+}
+
+void PKpiece::clear() {
+  Planner::clear();
+  for (auto& motion : motions_) si_->freeState(motion->state);
+  motions_.clear();
+  grid_.clear();
+  cells_.clear();
+  nearest_.clear();
+  goalStarts_.clear();
+  iteration_ = 1;
+  beliefMeanSum_ = 0.0;
+  candidateCount_ = 0;
+  goalCandidates_ = 0;
+  bestGoalConfidence_ = 0.0;
+  solutionBeliefs_.clear();
+}
+
+std::uint64_t PKpiece::nextStreamSeed() {
+  // Each candidate gets its own block of particle streams (one per particle).
+  return streamBase_ + (streamCounter_++) * 1024;
+}
+
+void PKpiece::computeImportance(Grid::Cell* cell, void* planner) {
+  const auto& self = *static_cast<const PKpiece*>(planner);
+  CellData& d = *cell->data;
+  const double cellCount = static_cast<double>(self.cells_.size());
+  const double f = self.settings_.beliefWeight > 0.0 ? self.settings_.beliefWeight : cellCount;
+  const double normalizedBelief =
+      self.beliefMeanSum_ > 0.0 ? d.meanBelief() / self.beliefMeanSum_ : 0.0;
+  // The paper's log(I) is 0 for the first cell; 1 + log(I) keeps it positive.
+  const double age = 1.0 + std::log(static_cast<double>(d.iteration));
+  d.importance = (1.0 + f * normalizedBelief) * age * d.score /
+                 (d.selections * (1.0 + cell->neighbors) * d.motions.size());
+}
+
+void PKpiece::addMotion(Motion* motion) {
+  Grid::Coord coord(context_.projection().getDimension());
+  context_.projection().computeCoordinates(motion->state, coord);
+  Grid::Cell* cell = grid_.getCell(coord);
+  if (!cell) {
+    cell = grid_.createCell(coord);
+    cells_.push_back(std::make_unique<CellData>());
+    cell->data = cells_.back().get();
+    cell->data->iteration = iteration_;
+    grid_.add(cell);
+  }
+  CellData& data = *cell->data;
+  beliefMeanSum_ -= data.meanBelief();
+  data.motions.push_back(motion);
+  data.beliefSum += selectionBelief(*motion);
+  beliefMeanSum_ += data.meanBelief();
+  motion->cell = &data;
+
+  keepIfNear(nearest_, motion);
+  // Only a motion whose path is believed at least as much as a solution must be can end
+  // one: the goal bias expands from those.
+  if (!settings_.pathBelief || motion->pathBelief >= settings_.goalConfidence)
+    keepIfNear(goalStarts_, motion);
+}
+
+void PKpiece::keepIfNear(std::vector<Motion*>& nearest, Motion* motion) {
+  nearest.push_back(motion);
+  std::sort(nearest.begin(), nearest.end(),
+            [](const Motion* a, const Motion* b) { return a->goalDistance < b->goalDistance; });
+  if (nearest.size() > kNearestKept) nearest.pop_back();
+}
+
+PKpiece::Motion* PKpiece::nearGoalMotion() {
+  ompl::PDF<Motion*> pdf;
+  for (Motion* m : goalStarts_) pdf.add(m, 1.0 / (m->goalDistance + 0.01));
+  return pdf.sample(rng_.uniform01());
+}
+
+double PKpiece::selectionBelief(const Motion& motion) const {
+  return settings_.pathBelief ? motion.pathBelief : motion.belief;
+}
+
+PKpiece::Motion* PKpiece::selectInCell(const CellData& cell) {
+  const auto& motions = cell.motions;
+  if (rng_.uniform01() < settings_.kpieceSelection) {
+    // As KPIECE does: a half-normal over the motions, newest first.
+    const int last = static_cast<int>(motions.size()) - 1;
+    return motions[static_cast<std::size_t>(last - rng_.halfNormalInt(0, last))];
+  }
+  double best = -1.0;
+  std::vector<Motion*> ties;
+  for (Motion* m : motions) {
+    const double belief = selectionBelief(*m);
+    if (belief > best + 1e-12) {
+      best = belief;
+      ties.assign(1, m);
+    } else if (std::abs(belief - best) <= 1e-12) {
+      ties.push_back(m);
+    }
+  }
+  return ties[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(ties.size()) - 1))];
+}
+
+PKpiece::Motion* PKpiece::selectMotion() {
+  steerNext_ = !goalStarts_.empty() && rng_.uniform01() < settings_.goalBias;
+  if (steerNext_) return nearGoalMotion();
+  const bool exterior = grid_.countExternal() > 0 &&
+                        (grid_.countInternal() == 0 || rng_.uniform01() < settings_.borderFraction);
+  Grid::Cell* cell = exterior ? grid_.topExternal() : grid_.topInternal();
+  cell->data->selections += 1;
+  return selectInCell(*cell->data);
+}
+
+std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
+  const auto& si = context_.spaceInformation();
+  const unsigned minSteps = si->getMinControlDuration();
+  const unsigned maxSteps = si->getMaxControlDuration();
+  const std::size_t dimension = si->getControlSpace()->getDimension();
+  const double* start = physics::WorldStateSpace::values(from.state);
+  // Everything random is drawn first; the nominal runs then go to the worker processes too.
+  std::vector<NominalMotion> motions(settings_.candidates);
+  for (NominalMotion& motion : motions) {
+    motion.control.resize(dimension);
+    for (double& u : motion.control) u = rng_.uniformReal(-1.0, 1.0);
+    motion.steps = static_cast<unsigned>(
+        rng_.uniformInt(static_cast<int>(minSteps), static_cast<int>(maxSteps)));
+  }
+  // A goal-biased expansion tries one candidate aimed at the goal (GoalSteering).
+  if (steerNext_ && settings_.goalSteering)
+    if (std::optional<NominalMotion> steered = steering_.towardsGoal(start)) motions[0] = *steered;
+  std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, withParticles());
+  candidateCount_ += motions.size();
+  std::vector<Candidate> valid;
+  for (std::size_t c = 0; c < motions.size(); ++c) {
+    if (runs[c].steps == 0) continue;  // invalid from its first step
+    Candidate candidate;
+    candidate.control = std::move(motions[c].control);
+    candidate.run = std::move(runs[c]);
+    candidate.streamSeed = nextStreamSeed();
+    candidate.fromPathBelief = from.pathBelief;
+    candidate.pieceEnds = pieceEnds(candidate.run);
+    candidate.recordAfter = candidate.pieceEnds;
+    for (unsigned s = candidate.run.goalFrom; s > 0 && s <= candidate.run.steps; ++s)
+      candidate.recordAfter.push_back(s);
+    std::sort(candidate.recordAfter.begin(), candidate.recordAfter.end());
+    candidate.recordAfter.erase(
+        std::unique(candidate.recordAfter.begin(), candidate.recordAfter.end()),
+        candidate.recordAfter.end());
+    valid.push_back(std::move(candidate));
+  }
+  return valid;
+}
+
+void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
+  const double* start = physics::WorldStateSpace::values(from.state);
+  candidate.judged = true;
+  if (!withParticles()) {
+    // Without uncertainty the nominal run is the only particle (the paper's pKP column).
+    if (candidate.run.reachedGoal) settleNominalInGoal(candidate);
+    candidate.verdict = evaluator_.judgeNominal(start, candidate.run.end.data());
+    return;
+  }
+  ParticleRequest request;
+  request.start = start;
+  request.control = candidate.control.data();
+  request.steps = candidate.run.steps;
+  request.poses = from.poses.get();
+  request.robots = from.robotSpread.get();
+  request.recordAfter = candidate.recordAfter;
+  request.particles = settings_.particles;
+  request.streamSeed = candidate.streamSeed;
+  candidate.verdict = evaluator_.runParticles(request, toBeat);
+  if (candidate.run.reachedGoal && !candidate.verdict.pruned) settleInGoal(candidate);
+}
+
+bool PKpiece::withParticles() const { return settings_.uncertainty && settings_.particles > 0; }
+
+std::size_t PKpiece::recordIndex(const Candidate& candidate, unsigned step) {
+  const auto& steps = candidate.recordAfter;
+  const auto found = std::lower_bound(steps.begin(), steps.end(), step);
+  if (found == steps.end() || *found != step)
+    throw std::logic_error("p-KPIECE: no particle states recorded after step " +
+                           std::to_string(step));
+  return static_cast<std::size_t>(found - steps.begin());
+}
+
+void PKpiece::settleInGoal(Candidate& candidate) const {
+  // The nominal run went on while it stayed in the goal; it ends at the step where most
+  // particles are inside too, and of equals where the nominal run is nearest the goal point,
+  // rather than where it entered: the region's border, which a particle misses as often as
+  // it hits.
+  NominalRun& run = candidate.run;
+  unsigned bestStep = run.goalFrom;
+  unsigned bestCount = 0;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
+    const unsigned count = candidate.verdict.inGoalAt(recordIndex(candidate, step));
+    const double distance = context_.goal().distance(run.states[step - 1].data());
+    if (count > bestCount || (count == bestCount && distance < bestDistance)) {
+      bestCount = count;
+      bestDistance = distance;
+      bestStep = step;
+    }
+  }
+  candidate.verdict = candidate.verdict.cutAt(recordIndex(candidate, bestStep));
+  run.states.resize(bestStep);
+  run.end = run.states.back();
+  run.steps = bestStep;
+  candidate.pieceEnds = pieceEnds(run);
+}
+
+void PKpiece::settleNominalInGoal(Candidate& candidate) const {
+  // The run went on while it stayed in the goal; where it entered is the region's edge, which
+  // control noise in an execution misses half the time. It ends where it is nearest the goal
+  // point instead (the earliest of equals).
+  NominalRun& run = candidate.run;
+  unsigned bestStep = run.goalFrom;
+  double best = std::numeric_limits<double>::infinity();
+  for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
+    const double d = context_.goal().distance(run.states[step - 1].data());
+    if (d < best) {
+      best = d;
+      bestStep = step;
+    }
+  }
+  run.states.resize(bestStep);
+  run.end = run.states.back();
+  run.steps = bestStep;
+  candidate.pieceEnds = pieceEnds(run);
+  candidate.recordAfter = candidate.pieceEnds;
+}
+
+double PKpiece::solutionConfidence(const Candidate& c) const {
+  // How likely the plan ending with this candidate is to succeed: the path to it is valid,
+  // and then its particles end valid in the goal.
+  return (settings_.pathBelief ? c.fromPathBelief : 1.0) * c.verdict.goal;
+}
+
+bool PKpiece::reachesGoal(const Candidate& c) const {
+  return c.run.reachedGoal && c.judged && !c.verdict.pruned &&
+         solutionConfidence(c) >= settings_.goalConfidence;
+}
+
+PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, const Motion& from) {
+  if (valid.empty()) return nullptr;
+  // A candidate that reaches the goal ends the search: the most robust of those is kept.
+  Candidate* best = nullptr;
+  for (Candidate& c : valid) {
+    if (!c.run.reachedGoal) continue;
+    judge(c, from, -1.0);
+    ++goalCandidates_;
+    bestGoalConfidence_ = std::max(bestGoalConfidence_, solutionConfidence(c));
+    if (reachesGoal(c) && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+  }
+  if (best) return best;
+  if (rng_.uniform01() < settings_.randomCandidate) {
+    Candidate& c =
+        valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
+    if (!c.judged) judge(c, from, -1.0);
+    return &c;
+  }
+  // The first candidate of highest belief, as if all were judged in full: a candidate stops
+  // as soon as it cannot beat the best so far, and none is judged once one is certain.
+  const bool prune = settings_.pruneCandidates;
+  for (Candidate& c : valid) {
+    if (prune && best && best->verdict.belief() >= 1.0) break;
+    if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
+    if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+  }
+  return best;
+}
+
+PKpiece::Motion* PKpiece::expand(Motion* from) {
+  std::vector<Candidate> valid = sampleCandidates(*from);
+  const Candidate* chosen = chooseCandidate(valid, *from);
+  if (!chosen) return nullptr;
+  const double* start = physics::WorldStateSpace::values(from->state);
+  const auto endPoses = from->poses->afterMotion(
+      evaluator_.objectBodies(), start, chosen->run.end.data(), chosen->verdict.ends, fitRng_);
+  // Pieces before the end carry the parent's pose distribution while no object has moved yet,
+  // and the end's once one has (the particles tell only how the motion ends).
+  const std::vector<std::vector<double>>& states = chosen->run.states;
+  Motion* parent = from;
+  unsigned pieceStart = 0;
+  for (std::size_t k = 0; k < chosen->pieceEnds.size(); ++k) {
+    const unsigned end = chosen->pieceEnds[k];
+    const bool last = end == states.size();
+    const bool untouched = !last && !objectsMoved(start, states[end - 1].data());
+    parent = addPiece(parent, *chosen, states[end - 1], end - pieceStart, from->pathBelief,
+                      untouched ? from->poses : endPoses,
+                      robotSpreadAt(*chosen, end, from->robotSpread));
+    pieceStart = end;
+  }
+  return parent;
+}
+
+std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {
+  // As KPIECE does, a kept motion is cut where its end effector changes cell: each piece is
+  // a motion of the tree, so one expansion can cover several cells.
+  std::vector<unsigned> ends;
+  for (std::size_t i = 0; i < run.states.size(); ++i)
+    if (i + 1 == run.states.size() || cellOf(run.states[i]) != cellOf(run.states[i + 1]))
+      ends.push_back(static_cast<unsigned>(i + 1));
+  return ends;
+}
+
+std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(
+    const Candidate& chosen, unsigned step, std::shared_ptr<const RobotSpread> parents) const {
+  if (!settings_.robotSpread || !withParticles()) return nullptr;
+  const std::size_t record = recordIndex(chosen, step);
+  std::vector<const std::vector<double>*> states;
+  for (const auto& particle : chosen.verdict.recorded)
+    if (particle.size() > record) states.push_back(&particle[record]);
+  // No particle got this far (the belief says so): the parent's spread is the best guess;
+  // the nominal robot alone would make what grows from here look certain.
+  if (states.empty()) return parents;
+  return RobotSpread::fromStates(robotPart_, states);
+}
+
+PKpiece::Grid::Coord PKpiece::cellOf(const std::vector<double>& state) const {
+  std::copy(state.begin(), state.end(), physics::WorldStateSpace::values(scratch_));
+  Grid::Coord coord(context_.projection().getDimension());
+  context_.projection().computeCoordinates(scratch_, coord);
+  return coord;
+}
+
+bool PKpiece::objectsMoved(const double* start, const double* state) const {
+  constexpr double kMoved = 0.001;  // m
+  for (std::size_t b : evaluator_.objectBodies())
+    if ((physics::WorldLayout::position(state, b) - physics::WorldLayout::position(start, b))
+            .norm() > kMoved)
+      return true;
+  return false;
+}
+
+PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
+                                   const std::vector<double>& end, unsigned steps,
+                                   double fromPathBelief,
+                                   std::shared_ptr<const ObjectPoseBelief> poses,
+                                   std::shared_ptr<const RobotSpread> robotSpread) {
+  auto motion = std::make_unique<Motion>();
+  motion->state = si_->allocState();
+  double* values = physics::WorldStateSpace::values(motion->state);
+  std::copy(end.begin(), end.end(), values);
+  motion->control = chosen.control;
+  motion->steps = steps;
+  motion->parent = parent;
+  motion->belief = chosen.verdict.belief();
+  // Every piece of one candidate shares its belief: multiply it in once.
+  motion->pathBelief = fromPathBelief * motion->belief;
+  motion->goalDistance = context_.goal().searchDistance(values);
+  motion->poses = std::move(poses);
+  motion->robotSpread = std::move(robotSpread);
+  motion->expansion = iteration_;
+  motion->reachesGoal = reachesGoal(chosen) && &end == &chosen.run.states.back();
+  Motion* raw = motion.get();
+  motions_.push_back(std::move(motion));
+  addMotion(raw);
+  return raw;
+}
+
+void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
+  std::vector<const Motion*> chain;
+  for (const Motion* m = end; m; m = m->parent) chain.push_back(m);
+  std::reverse(chain.begin(), chain.end());
+  auto path = std::make_shared<ompl::control::PathControl>(si_);
+  auto* csi = static_cast<ompl::control::SpaceInformation*>(si_.get());
+  const double stepSize = csi->getPropagationStepSize();
+  solutionBeliefs_.clear();
+  solutionPathBelief_ = end->pathBelief;
+  path->append(chain.front()->state);
+  for (std::size_t i = 1; i < chain.size(); ++i) {
+    // The pieces of one expansion are one control held for their summed duration, as its
+    // particles ran it (and as an execution with control noise must draw it: once).
+    unsigned steps = chain[i]->steps;
+    while (i + 1 < chain.size() && chain[i + 1]->expansion == chain[i]->expansion)
+      steps += chain[++i]->steps;
+    ompl::control::Control* control = csi->allocControl();
+    std::copy(chain[i]->control.begin(), chain[i]->control.end(),
+              control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+    path->append(chain[i]->state, control, steps * stepSize);
+    csi->freeControl(control);
+    solutionBeliefs_.push_back(chain[i]->belief);
+  }
+  pdef_->addSolutionPath(path, !exact, distance, getName());
+}
+
+ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCondition& ptc) {
+  checkValidity();
+  if (motions_.empty()) {
+    auto root = std::make_unique<Motion>();
+    root->state = si_->allocState();
+    si_->copyState(root->state, pdef_->getStartState(0));
+    const double* start = physics::WorldStateSpace::values(root->state);
+    root->goalDistance = context_.goal().searchDistance(start);
+    root->poses = settings_.uncertainty
+                      ? ObjectPoseBelief::initial(context_.layout(), evaluator_.sampler(), start)
+                      : std::make_shared<const ObjectPoseBelief>();
+    Motion* raw = root.get();
+    motions_.push_back(std::move(root));
+    addMotion(raw);
+    grid_.updateAll();
+  }
+  while (!ptc) {
+    Motion* from = selectMotion();
+    CellData* cell = from->cell;
+    Motion* added = expand(from);
+    cell->score *= added ? kGoodScoreFactor : kBadScoreFactor;
+    ++iteration_;
+    grid_.updateAll();  // beliefs are normalised over all cells: every importance changes
+    if (added && added->reachesGoal) {
+      recordSolution(added, true, added->goalDistance);
+      return ompl::base::PlannerStatus::EXACT_SOLUTION;
+    }
+  }
+  if (nearest_.empty() || nearest_.front()->parent == nullptr)
+    return ompl::base::PlannerStatus::TIMEOUT;
+  recordSolution(nearest_.front(), false, nearest_.front()->goalDistance);
+  return ompl::base::PlannerStatus::APPROXIMATE_SOLUTION;
+}
+
+void PKpiece::getPlannerData(ompl::base::PlannerData& data) const {
+  Planner::getPlannerData(data);
+  for (const auto& motion : motions_) {
+    const BeliefVertex vertex(motion->state, selectionBelief(*motion));
+    if (motion->parent)
+      data.addEdge(BeliefVertex(motion->parent->state, selectionBelief(*motion->parent)), vertex);
+    else
+      data.addStartVertex(vertex);
+  }
+}
+
+}  // namespace kautham::planners

@@ -1,0 +1,65 @@
+#include "kautham/planners/pkpiece/ParticleRunner.h"
+
+#include <algorithm>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "kautham/physics/WorldStateSpace.h"
+
+namespace kautham::planners {
+
+ParticleRunner::ParticleRunner(physics::PlanningContext& context)
+    : context_(context),
+      from_(context.spaceInformation()->allocState()),
+      to_(context.spaceInformation()->allocState()),
+      control_(context.spaceInformation()->allocControl()),
+      stateSize_(context.layout().stateSize()),
+      controlSize_(context.spaceInformation()->getControlSpace()->getDimension()) {}
+
+ParticleRunner::~ParticleRunner() {
+  const auto& si = context_.spaceInformation();
+  si->freeState(from_);
+  si->freeState(to_);
+  si->freeControl(control_);
+}
+
+bool ParticleRunner::step(const double* from, const double* control, double* to,
+                          const Eigen::Vector3d& targetReference) {
+  std::copy(from, from + stateSize_, physics::WorldStateSpace::values(from_));
+  std::copy(control, control + controlSize_,
+            control_->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+  const auto& si = context_.spaceInformation();
+  context_.propagator().propagate(from_, control_, si->getPropagationStepSize(), to_);
+  const double* result = physics::WorldStateSpace::values(to_);
+  std::copy(result, result + stateSize_, to);
+  return context_.validityChecker().check(to, targetReference) == physics::Violation::None;
+}
+
+ParticleResult ParticleRunner::run(const ParticleJob& job) {
+  context_.world().setContactParameters(job.contact);
+  ParticleResult result;
+  result.end = job.start;
+  std::vector<double> next(stateSize_);
+  auto record = job.recordAfter.begin();
+  for (unsigned i = 0; i < job.steps && result.valid; ++i) {
+    result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference);
+    bool stop = false;
+    if (result.valid && job.goalStop != GoalStop::Ignore) {
+      const bool inGoal = context_.goal().reached(next.data());
+      if (result.goalFrom > 0 && !inGoal) break;  // left the goal: end at its last state inside
+      if (inGoal && result.goalFrom == 0) {
+        result.goalFrom = i + 1;
+        stop = job.goalStop == GoalStop::Entering;
+      }
+    }
+    result.end.swap(next);
+    if (result.valid && record != job.recordAfter.end() && *record == i + 1) {
+      result.recorded.push_back(result.end);
+      ++record;
+    }
+    if (stop) break;
+  }
+  return result;
+}
+
+}  // namespace kautham::planners

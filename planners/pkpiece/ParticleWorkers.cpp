@@ -1,0 +1,372 @@
+#include "kautham/planners/pkpiece/ParticleWorkers.h"
+
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+#include <thread>
+
+namespace kautham::planners {
+
+namespace {
+
+// Jobs a worker holds at once: one running, one waiting, so it never idles while this process
+// runs a job of its own before handing out the next.
+constexpr unsigned kJobsPerWorker = 2;
+
+// Messages: a job is [index, steps, goal stop, n] (uint64), contact (3 doubles), target
+// reference (3), start state, control, then its n record steps (uint64); a result is [index,
+// valid, goal from, propagations, physics steps, n] (uint64), end state, then its n recorded
+// states.
+// Each is read as its fixed part, then the n items that part announces.
+constexpr std::size_t kJobHeader = 4 * sizeof(std::uint64_t) + 6 * sizeof(double);
+constexpr std::size_t kResultHeader = 6 * sizeof(std::uint64_t);
+
+std::size_t jobSize(const ParticleRunner& runner) {
+  return kJobHeader + (runner.stateSize() + runner.controlSize()) * sizeof(double);
+}
+
+std::size_t resultSize(const ParticleRunner& runner) {
+  return kResultHeader + runner.stateSize() * sizeof(double);
+}
+
+// Items announced by a message: more than a motion has steps is a corrupt message.
+constexpr std::uint64_t kMaxRecords = 1u << 16;
+
+/// Appends raw bytes; reads them back in order.
+class Packer {
+ public:
+  explicit Packer(std::vector<unsigned char>& buffer) : buffer_(buffer) { buffer_.clear(); }
+  void put(const void* data, std::size_t size) {
+    const auto* bytes = static_cast<const unsigned char*>(data);
+    buffer_.insert(buffer_.end(), bytes, bytes + size);
+  }
+  void put(std::uint64_t value) { put(&value, sizeof value); }
+  void put(double value) { put(&value, sizeof value); }
+
+ private:
+  std::vector<unsigned char>& buffer_;
+};
+
+class Unpacker {
+ public:
+  explicit Unpacker(const std::vector<unsigned char>& buffer) : data_(buffer.data()) {}
+  void get(void* data, std::size_t size) {
+    std::memcpy(data, data_ + offset_, size);
+    offset_ += size;
+  }
+  std::uint64_t u64() {
+    std::uint64_t value = 0;
+    get(&value, sizeof value);
+    return value;
+  }
+  double real() {
+    double value = 0.0;
+    get(&value, sizeof value);
+    return value;
+  }
+
+ private:
+  const unsigned char* data_;
+  std::size_t offset_ = 0;
+};
+
+enum class Io { Ok, Closed, Failed };
+
+/// Reads exactly `size` bytes (retrying partial reads and EINTR). Closed: end of file.
+Io readAll(int fd, void* data, std::size_t size) {
+  auto* bytes = static_cast<unsigned char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::read(fd, bytes, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno == ECONNRESET ? Io::Closed : Io::Failed;
+    if (n == 0) return Io::Closed;
+    bytes += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return Io::Ok;
+}
+
+/// Writes exactly `size` bytes; a closed peer is an error, not SIGPIPE.
+Io writeAll(int fd, const void* data, std::size_t size) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::send(fd, bytes, size, MSG_NOSIGNAL);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno == EPIPE || errno == ECONNRESET ? Io::Closed : Io::Failed;
+    bytes += n;
+    size -= static_cast<std::size_t>(n);
+  }
+  return Io::Ok;
+}
+
+pid_t waitFor(pid_t pid, int* status, int options) {
+  pid_t r;
+  do r = ::waitpid(pid, status, options);
+  while (r < 0 && errno == EINTR);
+  return r;
+}
+
+std::string describeStatus(int status) {
+  if (WIFSIGNALED(status))
+    return "killed by signal " + std::to_string(WTERMSIG(status)) + " (" +
+           ::strsignal(WTERMSIG(status)) + ")";
+  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
+  return "stopped (status " + std::to_string(status) + ")";
+}
+
+}  // namespace
+
+ParticleWorkers::ParticleWorkers(ParticleRunner& runner, unsigned workers) : runner_(runner) {
+  if (workers == 0) throw std::invalid_argument("ParticleWorkers: at least one worker");
+  try {
+    for (unsigned i = 0; i < workers; ++i) {
+      int ends[2];
+      if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
+        throw std::system_error(errno, std::generic_category(), "particle workers: socketpair");
+      const pid_t pid = ::fork();
+      if (pid < 0) {
+        const int error = errno;
+        ::close(ends[0]);
+        ::close(ends[1]);
+        throw std::system_error(error, std::generic_category(), "particle workers: fork");
+      }
+      if (pid == 0) {
+        // The worker: keeps only its own end, so each socket closes when this process or the
+        // planner's goes away.
+        ::close(ends[0]);
+        for (const Worker& w : workers_) ::close(w.fd);
+        serve(ends[1]);
+      }
+      ::close(ends[1]);
+      Worker worker;
+      worker.pid = pid;
+      worker.fd = ends[0];
+      workers_.push_back(worker);
+    }
+  } catch (...) {
+    shutdown();
+    throw;
+  }
+}
+
+ParticleWorkers::~ParticleWorkers() { shutdown(); }
+
+std::vector<pid_t> ParticleWorkers::pids() const {
+  std::vector<pid_t> pids;
+  for (const Worker& w : workers_) pids.push_back(w.pid);
+  return pids;
+}
+
+void ParticleWorkers::serve(int fd) {
+  // Ctrl-C reaches the whole process group: the planner's process decides what it means, and
+  // this one ends when its socket closes.
+  std::signal(SIGINT, SIG_IGN);
+  int code = 0;
+  try {
+    const std::size_t stateSize = runner_.stateSize();
+    const std::size_t controlSize = runner_.controlSize();
+    const physics::PhysicsPropagator& propagator = runner_.context().propagator();
+    ParticleJob job;
+    job.start.resize(stateSize);
+    job.control.resize(controlSize);
+    for (;;) {
+      buffer_.resize(jobSize(runner_));
+      const Io in = readAll(fd, buffer_.data(), buffer_.size());
+      if (in != Io::Ok) {
+        code = in == Io::Closed ? 0 : 1;
+        break;
+      }
+      Unpacker unpack(buffer_);
+      const std::uint64_t index = unpack.u64();
+      job.steps = static_cast<unsigned>(unpack.u64());
+      job.goalStop = static_cast<GoalStop>(unpack.u64());
+      const std::uint64_t records = unpack.u64();
+      job.contact.friction = unpack.real();
+      job.contact.erp = unpack.real();
+      job.contact.cfm = unpack.real();
+      for (int k = 0; k < 3; ++k) job.targetReference[k] = unpack.real();
+      unpack.get(job.start.data(), stateSize * sizeof(double));
+      unpack.get(job.control.data(), controlSize * sizeof(double));
+      if (records > kMaxRecords) {
+        code = 1;
+        break;
+      }
+      std::vector<std::uint64_t> steps(records);
+      if (readAll(fd, steps.data(), records * sizeof(std::uint64_t)) != Io::Ok) {
+        code = 1;
+        break;
+      }
+      job.recordAfter.assign(steps.begin(), steps.end());
+
+      const physics::PropagationCounters before = propagator.counters();
+      const ParticleResult result = runner_.run(job);
+      const physics::PropagationCounters after = propagator.counters();
+
+      Packer pack(buffer_);
+      pack.put(index);
+      pack.put(std::uint64_t{result.valid ? 1u : 0u});
+      pack.put(std::uint64_t{result.goalFrom});
+      pack.put(std::uint64_t{after.propagations - before.propagations});
+      pack.put(std::uint64_t{after.physicsSteps - before.physicsSteps});
+      pack.put(std::uint64_t{result.recorded.size()});
+      pack.put(result.end.data(), stateSize * sizeof(double));
+      for (const std::vector<double>& state : result.recorded)
+        pack.put(state.data(), stateSize * sizeof(double));
+      if (writeAll(fd, buffer_.data(), buffer_.size()) != Io::Ok) {
+        code = 1;
+        break;
+      }
+    }
+  } catch (...) {
+    code = 2;
+  }
+  // Never return into the planner's code, never run its destructors or atexit handlers.
+  ::_exit(code);
+}
+
+void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob& job) {
+  Packer pack(buffer_);
+  pack.put(std::uint64_t{index});
+  pack.put(std::uint64_t{job.steps});
+  pack.put(static_cast<std::uint64_t>(job.goalStop));
+  pack.put(std::uint64_t{job.recordAfter.size()});
+  pack.put(job.contact.friction);
+  pack.put(job.contact.erp);
+  pack.put(job.contact.cfm);
+  for (int k = 0; k < 3; ++k) pack.put(job.targetReference[k]);
+  pack.put(job.start.data(), runner_.stateSize() * sizeof(double));
+  pack.put(job.control.data(), runner_.controlSize() * sizeof(double));
+  for (unsigned step : job.recordAfter) pack.put(std::uint64_t{step});
+  const Io out = writeAll(worker.fd, buffer_.data(), buffer_.size());
+  if (out != Io::Ok) fail(worker, out == Io::Closed ? "closed its socket" : "cannot be written to");
+  ++worker.inFlight;
+}
+
+void ParticleWorkers::receive(Worker& worker, const std::vector<ParticleJob>& jobs,
+                              std::vector<ParticleResult>& results) {
+  buffer_.resize(resultSize(runner_));
+  const Io in = readAll(worker.fd, buffer_.data(), buffer_.size());
+  if (in != Io::Ok) fail(worker, in == Io::Closed ? "closed its socket" : "cannot be read from");
+  Unpacker unpack(buffer_);
+  const std::uint64_t index = unpack.u64();
+  if (index >= results.size()) fail(worker, "answered a job it was not given");
+  ParticleResult& result = results[index];
+  result.valid = unpack.u64() != 0;
+  result.goalFrom = static_cast<unsigned>(unpack.u64());
+  physics::PropagationCounters work;
+  work.propagations = unpack.u64();
+  work.physicsSteps = unpack.u64();
+  const std::uint64_t records = unpack.u64();
+  if (records > jobs[index].recordAfter.size())
+    fail(worker, "announced more recorded states than its job asked for");
+  result.end.resize(runner_.stateSize());
+  unpack.get(result.end.data(), runner_.stateSize() * sizeof(double));
+  result.recorded.assign(records, std::vector<double>(runner_.stateSize()));
+  for (std::vector<double>& state : result.recorded) {
+    const Io more = readAll(worker.fd, state.data(), state.size() * sizeof(double));
+    if (more != Io::Ok)
+      fail(worker, more == Io::Closed ? "closed its socket" : "cannot be read from");
+  }
+  runner_.context().propagator().addCounters(work);
+  --worker.inFlight;
+}
+
+void ParticleWorkers::fail(Worker& worker, const char* what) {
+  broken_ = true;
+  std::string how = "still running";
+  if (!worker.reaped) {
+    // A worker that closed its socket is exiting: give it a moment to become a zombie, so the
+    // report says how it ended; one that does not is killed (a pool never waits unbounded).
+    int status = 0;
+    pid_t r = 0;
+    for (int tries = 0; tries < 100 && (r = waitFor(worker.pid, &status, WNOHANG)) == 0; ++tries)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    if (r == 0) {
+      ::kill(worker.pid, SIGKILL);
+      r = waitFor(worker.pid, &status, 0);
+      how = "did not exit and was killed";
+    } else if (r == worker.pid) {
+      how = describeStatus(status);
+    } else {
+      how = "cannot be waited for";
+    }
+    worker.reaped = true;
+  }
+  const std::size_t number = static_cast<std::size_t>(&worker - workers_.data());
+  throw std::runtime_error("particle worker " + std::to_string(number) + " (pid " +
+                           std::to_string(worker.pid) + ") " + what + ": " + how);
+}
+
+std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>& jobs) {
+  if (broken_) throw std::runtime_error("particle workers: unusable since a worker died");
+  std::vector<ParticleResult> results(jobs.size());
+  for (Worker& w : workers_) w.inFlight = 0;
+  std::size_t next = 0;
+  std::size_t done = 0;
+  // Round by round, one job per worker, keeping the last job for this process: a batch of
+  // four on three processes runs as 1 + 2 + 1, not 2 + 2 + 0.
+  const auto handOut = [&] {
+    for (unsigned round = 0; round < kJobsPerWorker; ++round)
+      for (Worker& w : workers_)
+        if (w.inFlight <= round && jobs.size() - next > 1) {
+          send(w, next, jobs[next]);
+          ++next;
+        }
+  };
+  std::vector<pollfd> fds(workers_.size());
+  handOut();
+  while (done < jobs.size()) {
+    if (next < jobs.size()) {
+      results[next] = runner_.run(jobs[next]);
+      ++next;
+      ++done;
+    }
+    bool busy = false;
+    for (std::size_t i = 0; i < workers_.size(); ++i) {
+      fds[i].fd = workers_[i].inFlight > 0 ? workers_[i].fd : -1;  // poll skips negative fds
+      fds[i].events = POLLIN;
+      fds[i].revents = 0;
+      busy = busy || workers_[i].inFlight > 0;
+    }
+    if (busy) {
+      // Wait only when this process has no job left to run itself.
+      const int ready = ::poll(fds.data(), fds.size(), next < jobs.size() ? 0 : -1);
+      if (ready < 0 && errno != EINTR)
+        throw std::system_error(errno, std::generic_category(), "particle workers: poll");
+      for (std::size_t i = 0; ready > 0 && i < workers_.size(); ++i)
+        if (fds[i].fd >= 0 && (fds[i].revents & (POLLIN | POLLHUP | POLLERR))) {
+          receive(workers_[i], jobs, results);
+          ++done;
+        }
+    }
+    handOut();
+  }
+  return results;
+}
+
+void ParticleWorkers::shutdown() noexcept {
+  for (Worker& w : workers_)
+    if (w.fd >= 0) {
+      ::close(w.fd);
+      w.fd = -1;
+    }
+  // Each worker sees its socket close after the job it is running, if any, and exits.
+  for (Worker& w : workers_)
+    if (!w.reaped) {
+      int status = 0;
+      waitFor(w.pid, &status, 0);
+      w.reaped = true;
+    }
+}
+
+}  // namespace kautham::planners

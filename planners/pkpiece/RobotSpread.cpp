@@ -1,0 +1,40 @@
+#include "kautham/planners/pkpiece/RobotSpread.h"
+
+namespace kautham::planners {
+
+RobotSpread::Part::Part(const physics::WorldLayout& layout) {
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    if (layout.bodies[b].role != physics::BodyRole::Robot) continue;
+    for (std::size_t k = 0; k < physics::WorldLayout::kBodyStateSize; ++k)
+      indices_.push_back(b * physics::WorldLayout::kBodyStateSize + k);
+  }
+  for (std::size_t j = 0; j < layout.joints.size(); ++j) {
+    indices_.push_back(layout.jointPositionIndex() + j);
+    indices_.push_back(layout.jointVelocityIndex() + j);
+  }
+}
+
+RobotSpread::RobotSpread(std::shared_ptr<const Part> part, std::size_t samples)
+    : part_(std::move(part)), samples_(samples), values_(samples * part_->indices().size()) {}
+
+std::shared_ptr<const RobotSpread> RobotSpread::fromStates(
+    std::shared_ptr<const Part> part, const std::vector<const std::vector<double>*>& states) {
+  if (states.empty()) return nullptr;
+  std::shared_ptr<RobotSpread> spread(new RobotSpread(std::move(part), states.size()));
+  const std::vector<std::size_t>& indices = spread->part_->indices();
+  double* out = spread->values_.data();
+  for (const std::vector<double>* state : states)
+    for (std::size_t index : indices) *out++ = (*state)[index];
+  return spread;
+}
+
+const double* RobotSpread::sample(std::size_t i) const {
+  return values_.data() + (i % samples_) * part_->indices().size();
+}
+
+void RobotSpread::apply(std::size_t i, double* state) const {
+  const double* in = sample(i);
+  for (std::size_t index : part_->indices()) state[index] = *in++;
+}
+
+}  // namespace kautham::planners

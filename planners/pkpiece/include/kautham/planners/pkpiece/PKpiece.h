@@ -1,0 +1,117 @@
+#pragma once
+
+#include <memory>
+#include <random>
+#include <vector>
+
+#include <ompl/base/Planner.h>
+#include <ompl/datastructures/GridB.h>
+#include <ompl/util/RandomNumbers.h>
+
+#include "kautham/physics/PlanningContext.h"
+#include "kautham/planners/BeliefReporter.h"
+#include "kautham/planners/ParallelPlanner.h"
+#include "kautham/planners/pkpiece/GoalSteering.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
+#include "kautham/planners/pkpiece/PKpieceSettings.h"
+#include "kautham/planners/pkpiece/RobotSpread.h"
+
+namespace kautham::planners {
+
+/// p-KPIECE (Muhayyuddin, Moll, Kavraki, Rosell, RA-L 2018; Algorithms 1 and 2): KPIECE whose
+/// expansions keep the most robust of k candidate motions, judged by n_p particle motions run
+/// under sampled object poses, contact parameters and control noise, and whose cell and motion
+/// choices prefer robust regions. Built on OMPL's GridB, not on KPIECE1 (whose selection code
+/// cannot be overridden). Each motion stores its end state, its control and duration, its
+/// belief and the pose distribution of the objects at its end (ObjectPoseBelief).
+class PKpiece : public ompl::base::Planner, public BeliefReporter, public ParallelPlanner {
+ public:
+  PKpiece(physics::PlanningContext& context, const PKpieceSettings& settings);
+  ~PKpiece() override;
+
+  ompl::base::PlannerStatus solve(const ompl::base::PlannerTerminationCondition& ptc) override;
+  void clear() override;
+  void getPlannerData(ompl::base::PlannerData& data) const override;
+  std::vector<double> solutionBeliefs() const override { return solutionBeliefs_; }
+  /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
+  void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
+
+ private:
+  struct Motion;
+  struct CellData;
+  struct ByImportance {
+    bool operator()(const CellData* a, const CellData* b) const;
+  };
+  using Grid = ompl::GridB<CellData*, ByImportance>;
+  struct Candidate;
+
+  void addMotion(Motion* motion);
+  /// Adds `motion` to a list of the motions nearest the goal, nearest first, kept short.
+  static void keepIfNear(std::vector<Motion*>& nearest, Motion* motion);
+  Motion* selectMotion();
+  Motion* selectInCell(const CellData& cell);
+  Motion* nearGoalMotion();
+  /// Grows the tree from `from`; returns the last motion added, or null.
+  Motion* expand(Motion* from);
+  Motion* addPiece(Motion* parent, const Candidate& chosen, const std::vector<double>& end,
+                   unsigned steps, double fromPathBelief,
+                   std::shared_ptr<const ObjectPoseBelief> poses,
+                   std::shared_ptr<const RobotSpread> robotSpread);
+  /// Steps after which a nominal run is cut into tree motions: where the end effector
+  /// changes cell, and at the end.
+  std::vector<unsigned> pieceEnds(const NominalRun& run) const;
+  /// The robot states the chosen candidate's particles reached after `step` steps (the
+  /// parent's, `parents`, if none did).
+  std::shared_ptr<const RobotSpread> robotSpreadAt(
+      const Candidate& chosen, unsigned step, std::shared_ptr<const RobotSpread> parents) const;
+  /// Candidates are judged by particles (uncertainty on), not by their nominal run alone.
+  bool withParticles() const;
+  /// Where the particles' states after `step` steps are in their recorded states.
+  static std::size_t recordIndex(const Candidate& candidate, unsigned step);
+  /// Ends a goal-reaching candidate at the step where most of its particles are in the goal.
+  void settleInGoal(Candidate& candidate) const;
+  /// Without particles: ends a run through the goal where it comes nearest the goal point.
+  void settleNominalInGoal(Candidate& candidate) const;
+  /// The belief cells and motion choice use: the path's or the motion's own (pathBelief).
+  double selectionBelief(const Motion& motion) const;
+  Grid::Coord cellOf(const std::vector<double>& state) const;
+  bool objectsMoved(const double* start, const double* state) const;
+  std::vector<Candidate> sampleCandidates(const Motion& from);
+  /// Runs the candidate's particles (or judges its nominal run), pruned against `toBeat`.
+  void judge(Candidate& candidate, const Motion& from, double toBeat);
+  Candidate* chooseCandidate(std::vector<Candidate>& valid, const Motion& from);
+  bool reachesGoal(const Candidate& candidate) const;
+  /// The estimated success of the plan that would end with the candidate (goalConfidence).
+  double solutionConfidence(const Candidate& candidate) const;
+  static void computeImportance(Grid::Cell* cell, void* planner);
+  void recordSolution(const Motion* end, bool exact, double distance);
+  std::uint64_t nextStreamSeed();
+
+  physics::PlanningContext& context_;
+  PKpieceSettings settings_;
+  MotionEvaluator evaluator_;
+  ompl::RNG rng_;
+  std::mt19937_64 fitRng_;    ///< EM seeding
+  std::uint64_t streamBase_;  ///< particle streams derive from this and a counter
+  std::uint64_t streamCounter_ = 0;
+  Grid grid_;  ///< over the end-effector projection (2 or 3 dimensions)
+  std::vector<std::unique_ptr<Motion>> motions_;
+  std::vector<std::unique_ptr<CellData>> cells_;
+  std::vector<Motion*> nearest_;  ///< the motions nearest the goal, nearest first
+  /// The same among the motions a solution may grow from (see addMotion).
+  std::vector<Motion*> goalStarts_;
+  unsigned iteration_ = 1;
+  double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
+  std::uint64_t candidateCount_ = 0;
+  std::uint64_t goalCandidates_ = 0;  ///< candidates whose nominal run entered the goal
+  double bestGoalConfidence_ = 0.0;   ///< the best solutionConfidence among them
+  std::vector<double> solutionBeliefs_;
+  double solutionPathBelief_ = 1.0;
+  ompl::base::State* scratch_ = nullptr;  ///< for projecting raw states
+  std::shared_ptr<const RobotSpread::Part> robotPart_;
+  GoalSteering steering_;
+  bool steerNext_ = false;  ///< the motion being expanded was chosen by the goal bias
+};
+
+}  // namespace kautham::planners

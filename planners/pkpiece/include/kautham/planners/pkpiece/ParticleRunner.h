@@ -1,0 +1,45 @@
+#pragma once
+
+#include <cstddef>
+
+#include <ompl/base/State.h>
+#include <ompl/control/Control.h>
+#include <Eigen/Core>
+
+#include "kautham/physics/PlanningContext.h"
+#include "kautham/planners/pkpiece/ParticleJob.h"
+
+namespace kautham::planners {
+
+/// Runs motions through a planning context's propagator and full validity checker, one
+/// propagation step per propagate call, so a motion stops at its first invalid state. Used for
+/// nominal runs, particle jobs run inline, and particle jobs in worker processes (each with
+/// its own copy made by fork): the same code everywhere.
+class ParticleRunner {
+ public:
+  explicit ParticleRunner(physics::PlanningContext& context);
+  ~ParticleRunner();
+  ParticleRunner(const ParticleRunner&) = delete;
+  ParticleRunner& operator=(const ParticleRunner&) = delete;
+
+  /// One propagation step from `from` into `to`; returns whether the new state is valid.
+  bool step(const double* from, const double* control, double* to,
+            const Eigen::Vector3d& targetReference);
+  /// Sets the job's contact parameters (they stay set: the caller restores its own) and steps
+  /// the control from the start state until the first invalid state or `steps` steps.
+  ParticleResult run(const ParticleJob& job);
+
+  physics::PlanningContext& context() { return context_; }
+  std::size_t stateSize() const { return stateSize_; }
+  std::size_t controlSize() const { return controlSize_; }
+
+ private:
+  physics::PlanningContext& context_;
+  ompl::base::State* from_;
+  ompl::base::State* to_;
+  ompl::control::Control* control_;
+  std::size_t stateSize_;
+  std::size_t controlSize_;
+};
+
+}  // namespace kautham::planners

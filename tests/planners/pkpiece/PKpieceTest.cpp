@@ -1,0 +1,218 @@
+// p-KPIECE and o-KPIECE on real problems, with the real physics and the real uncertainty
+// sampling; every plan is checked by replaying it.
+
+#include <gtest/gtest.h>
+#include <ompl/util/Console.h>
+
+#include "TestPaths.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/physics/UncertaintySampler.h"
+#include "kautham/planners/Solve.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/ObjectPoseBelief.h"
+
+namespace kautham::planners {
+namespace {
+
+const bool quietOmpl = [] {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  return true;
+}();
+
+struct PlanRun {
+  PlanOutcome outcome;
+  physics::ReplayResult replay;
+  std::string property(const std::string& name) const {
+    for (const auto& [key, value] : outcome.statistics.plannerProperties)
+      if (key == name) return value;
+    return "";
+  }
+};
+
+PlanRun plan(const std::string& file, const std::string& planner, std::uint32_t seed,
+             std::vector<ParameterOverride> overrides = {}) {
+  const core::Problem problem = core::loadProblem(test::repoFile(file));
+  overrides.push_back({"time_limit", "300"});
+  const PlanRequest request = makeRequest(problem, planner, overrides, seedRandomness(seed));
+  physics::PlanningContext context(problem, 0, request.propagation());
+  PlanRun run;
+  run.outcome = solve(context, request);
+  run.replay = physics::replay(context, run.outcome.controls);
+  return run;
+}
+
+TEST(PKpieceTest, WithoutUncertaintySolvesThePushingProblemAndTheReplayReachesTheGoal) {
+  const PlanRun run = plan("problems/pusher_cans_5.xml", "p-KPIECE", 1, {{"uncertainty", "0"}});
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_EQ(run.replay.firstViolation, physics::Violation::None);
+  EXPECT_EQ(run.property("particles"), "0");  // the nominal run is the only judge
+  ASSERT_EQ(run.outcome.beliefs.size(), run.outcome.controls.size());
+  // The nominal run is valid (it was kept); its belief is whether it moved objects within d.
+  for (double b : run.outcome.beliefs) EXPECT_TRUE(b == 0.0 || b == 1.0) << b;
+}
+
+TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
+  const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
+                           {{"particles", "5"}, {"candidates", "4"}});
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  const long candidates = std::stol(run.property("candidates"));
+  const long particles = std::stol(run.property("particles"));
+  EXPECT_GT(particles, 0);
+  EXPECT_LE(particles, 5 * candidates);  // only valid candidates get particles, at most 5
+  ASSERT_EQ(run.outcome.beliefs.size(), run.outcome.controls.size());
+  for (double b : run.outcome.beliefs) {
+    EXPECT_GE(b, 0.0);
+    EXPECT_LE(b, 1.0);
+    // Beliefs are products of fractions of 5 particles.
+    EXPECT_NEAR(b * 25.0, std::round(b * 25.0), 1e-9);
+  }
+}
+
+TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
+  const std::vector<ParameterOverride> small = {{"particles", "6"}, {"candidates", "4"}};
+  std::vector<ParameterOverride> full = small;
+  full.push_back({"prune_candidates", "0"});
+  const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, small);
+  const PlanRun judgedInFull = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, full);
+  ASSERT_TRUE(pruned.outcome.solved);
+  ASSERT_EQ(pruned.outcome.controls.size(), judgedInFull.outcome.controls.size());
+  for (std::size_t i = 0; i < pruned.outcome.controls.size(); ++i) {
+    EXPECT_EQ(pruned.outcome.controls[i].values, judgedInFull.outcome.controls[i].values) << i;
+    EXPECT_EQ(pruned.outcome.controls[i].steps, judgedInFull.outcome.controls[i].steps) << i;
+  }
+  EXPECT_EQ(pruned.outcome.beliefs, judgedInFull.outcome.beliefs);
+  EXPECT_EQ(pruned.property("candidates"), judgedInFull.property("candidates"));
+  EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
+}
+
+TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBeliefs) {
+  const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
+                           {{"particles", "5"}, {"candidates", "4"}});
+  ASSERT_TRUE(run.outcome.solved);
+  ASSERT_GE(run.outcome.controls.size(), 2u);
+  double product = 1.0;
+  for (double b : run.outcome.beliefs) product *= b;
+  EXPECT_NEAR(std::stod(run.property("solution_path_belief")), product, 1e-6);
+  // The pieces a motion was cut into are merged back: no two neighbours share a control.
+  for (std::size_t i = 1; i < run.outcome.controls.size(); ++i)
+    EXPECT_NE(run.outcome.controls[i].values, run.outcome.controls[i - 1].values) << i;
+}
+
+TEST(PKpieceTest, SameSeedGivesTheSamePlan) {
+  const std::vector<ParameterOverride> small = {{"particles", "3"}, {"candidates", "3"}};
+  const PlanRun first = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
+  const PlanRun second = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
+  ASSERT_TRUE(first.outcome.solved);
+  ASSERT_EQ(first.outcome.controls.size(), second.outcome.controls.size());
+  for (std::size_t i = 0; i < first.outcome.controls.size(); ++i) {
+    EXPECT_EQ(first.outcome.controls[i].values, second.outcome.controls[i].values);
+    EXPECT_EQ(first.outcome.controls[i].steps, second.outcome.controls[i].steps);
+  }
+  EXPECT_EQ(first.outcome.beliefs, second.outcome.beliefs);
+}
+
+TEST(PKpieceTest, OKpieceSolvesWithTheKnowledgeRulesAndReplaysAreJudgedInFull) {
+  const PlanRun run = plan("problems/pusher_cans_5.xml", "o-KPIECE", 1);
+  ASSERT_TRUE(run.outcome.solved);
+  // The replay applies every constraint, whatever o-KPIECE planned with: it either reaches the
+  // goal or names the after-effect it missed.
+  if (!run.replay.reachedGoal) {
+    const physics::Violation v = run.replay.firstViolation;
+    EXPECT_TRUE(v == physics::Violation::ObjectTooFast || v == physics::Violation::ObjectTilted ||
+                v == physics::Violation::ObjectOffSupport || v == physics::Violation::TargetMoved ||
+                v == physics::Violation::None)
+        << physics::toString(v);
+  }
+}
+
+TEST(PKpieceTest, KnowledgeRulesIgnoreAfterEffectsThatTheFullRulesReject) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_cans_5.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  std::vector<double> state = context.startState();
+  const physics::WorldLayout& layout = context.layout();
+  std::size_t can = 0;
+  while (layout.bodies[can].role != physics::BodyRole::Movable) ++can;
+  state[can * physics::WorldLayout::kBodyStateSize + physics::WorldLayout::kLinearVelocity] = 5.0;
+  const physics::WorldValidityChecker knowledge(
+      context.spaceInformation(), std::make_shared<physics::WorldLayout>(layout), problem,
+      context.startState().data(), physics::ValidityRules::KnowledgeOnly);
+  EXPECT_EQ(context.validityChecker().check(state.data()), physics::Violation::ObjectTooFast);
+  EXPECT_EQ(knowledge.check(state.data()), physics::Violation::None);
+}
+
+TEST(ObjectPoseBeliefTest, StartsAsTheInitialUncertaintyAndRefitsOnlyMovedObjects) {
+  const core::Problem problem =
+      core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  const physics::WorldLayout& layout = context.layout();
+  const physics::UncertaintySampler sampler(problem, layout);
+  const std::vector<double> start = context.startState();
+  const auto initial = ObjectPoseBelief::initial(layout, sampler, start.data());
+  std::vector<std::size_t> objects;
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+    if (layout.bodies[b].role != physics::BodyRole::Robot) objects.push_back(b);
+  for (std::size_t b : objects) EXPECT_EQ(initial->componentCounts()[b], 1u) << b;
+
+  // Draws spread around the start pose with the problem's 1 cm.
+  std::mt19937_64 rng(7);
+  double sumSquares = 0.0;
+  const int draws = 2000;
+  for (int i = 0; i < draws; ++i) {
+    std::vector<double> s = start;
+    initial->samplePoses(s.data(), rng);
+    const Eigen::Vector3d d =
+        physics::planarPose(s.data(), objects[0]) - physics::planarPose(start.data(), objects[0]);
+    sumSquares += d.x() * d.x();
+  }
+  EXPECT_NEAR(std::sqrt(sumSquares / draws), 0.01, 0.001);
+
+  // One object moved in two clusters of outcomes; the others stayed.
+  std::vector<double> end = start;
+  std::vector<std::vector<double>> particles;
+  for (int i = 0; i < 12; ++i) {
+    std::vector<double> p = start;
+    Eigen::Vector3d pose = physics::planarPose(start.data(), objects[0]);
+    pose.x() += (i % 2 ? 0.05 : -0.05) + 0.001 * i;
+    physics::setPlanarPose(p.data(), objects[0], pose);
+    particles.push_back(p);
+  }
+  const auto after = initial->afterMotion(objects, start.data(), end.data(), particles, rng);
+  EXPECT_GE(after->componentCounts()[objects[0]], 2u);
+  for (std::size_t i = 1; i < objects.size(); ++i)
+    EXPECT_EQ(after->componentCounts()[objects[i]], 1u);
+}
+
+TEST(MotionEvaluatorTest, ARunThroughTheGoalGoesOnWhileItStaysInside) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_free.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  MotionEvaluator evaluator(context, 0.3);
+  const std::vector<double>& start = context.startState();
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int throughGoal = 0;
+  for (int attempt = 0; attempt < 4000 && throughGoal < 3; ++attempt) {
+    const std::vector<double> control{uniform(rng), uniform(rng), uniform(rng)};
+    const NominalRun first = evaluator.runNominal(start.data(), control.data(), 60);
+    if (!first.reachedGoal) continue;
+    EXPECT_EQ(first.goalFrom, first.steps);  // the default stops on entering
+    const NominalRun through = evaluator.runNominal(start.data(), control.data(), 60, true);
+    ASSERT_TRUE(through.reachedGoal);
+    EXPECT_EQ(through.goalFrom, first.goalFrom);
+    EXPECT_GE(through.steps, through.goalFrom);
+    ASSERT_EQ(through.states.size(), through.steps);
+    for (unsigned s = through.goalFrom; s <= through.steps; ++s)
+      EXPECT_TRUE(context.goal().reached(through.states[s - 1].data())) << s;
+    if (through.steps < 60) {
+      // It stopped because the next step left the goal (or broke a constraint).
+      const NominalRun next = evaluator.runNominal(through.end.data(), control.data(), 1);
+      EXPECT_TRUE(next.steps == 0 || !context.goal().reached(next.end.data()));
+    }
+    ++throughGoal;
+  }
+  EXPECT_EQ(throughGoal, 3);
+}
+
+}  // namespace
+}  // namespace kautham::planners
