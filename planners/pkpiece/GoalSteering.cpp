@@ -17,6 +17,9 @@ GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvalua
 
 std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) const {
   if (context_.goal().spec().joints.size() > 0) return std::nullopt;
+  // While an object fills the goal's free space, the straight move at the goal point only
+  // shoves it on towards the target: the expansion keeps its random candidates instead.
+  if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
   const auto& si = context_.spaceInformation();
   const auto dimension = static_cast<Eigen::Index>(si->getControlSpace()->getDimension());
   std::vector<NominalMotion> probes(static_cast<std::size_t>(dimension) + 1);

@@ -1,6 +1,8 @@
 // The robot states a p-KPIECE motion's particles reached, and particles that start from them;
 // the steering control of goal-biased expansions.
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
 
 #include "TestPaths.h"
@@ -116,6 +118,26 @@ TEST(GoalSteeringTest, TheSteeredMotionBringsTheGripperMuchCloserToTheGoal) {
       (scene.context.layout().goalLinkPosition(run.end.data()) - goal.position()).norm();
   EXPECT_GT(before, 0.05);
   EXPECT_LT(after, 0.5 * before) << before << " -> " << after;
+}
+
+TEST(GoalSteeringTest, NoSteeringWhileAnObjectFillsTheFreeSpace) {
+  // kuka_clutter_10 stands can1 on the pre-grasp: steering straight at the goal would push
+  // it on to the target.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
+  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
+  MotionEvaluator evaluator(context, 0.3);
+  const GoalSteering steering(context, evaluator);
+  std::vector<double> start = context.startState();
+  EXPECT_FALSE(steering.towardsGoal(start.data()).has_value());
+
+  const auto& bodies = context.layout().bodies;
+  const auto can1 = std::find_if(bodies.begin(), bodies.end(),
+                                 [](const physics::BodyInfo& b) { return b.name == "can1"; });
+  ASSERT_NE(can1, bodies.end());
+  // 20 cm aside (the state's x of can1), out of the free space: steering resumes.
+  start[static_cast<std::size_t>(can1 - bodies.begin()) * physics::WorldLayout::kBodyStateSize] +=
+      0.2;
+  EXPECT_TRUE(steering.towardsGoal(start.data()).has_value());
 }
 
 }  // namespace

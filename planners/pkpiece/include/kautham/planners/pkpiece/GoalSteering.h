@@ -15,12 +15,15 @@ namespace kautham::planners {
 /// with no control and one per control dimension give the link's displacement per unit of
 /// control (a numerical Jacobian); damped least squares turns the displacement still to go,
 /// spread over the fewest steps the control limits allow, into a control.
+///
+/// None while an object fills the goal's free space (WorkspaceGoal::freeSpaceBlocker): the
+/// straight move would push that object on to the target.
 class GoalSteering {
  public:
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator);
 
-  /// The steering motion from `start`; none when a probe step is invalid or the goal is a
-  /// configuration.
+  /// The steering motion from `start`; none when a probe step is invalid, the goal is a
+  /// configuration, or the goal's free space is blocked.
   std::optional<NominalMotion> towardsGoal(const double* start) const;
 
  private:
