@@ -6,6 +6,8 @@
 #include <fmt/ranges.h>
 
 #include "Commands.h"
+#include "KauthamPlanners.h"
+#include "PackagePathOption.h"
 #include "SideGraspClutter.h"
 #include "StartCheck.h"
 #include "kautham/core/ApproachCorridor.h"
@@ -18,6 +20,8 @@ namespace {
 struct CheckOptions {
   std::string problem;
   std::vector<std::string> modelDirs;
+  std::vector<std::string> packagePaths;
+  std::optional<std::string> planner;
 };
 
 const char* jointTypeName(core::JointType type) {
@@ -164,9 +168,11 @@ void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region
 }
 
 int runCheck(const CheckOptions& options) {
+  applyPackagePaths(options.packagePaths);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
-  const planners::PlanRequest request = planners::makeRequest(problem, std::nullopt, {}, 1);
+  const planners::PlanRequest request = planners::makeRequest(
+      problem, plannerToUse(problem, options.planner, /*lenient=*/true), {}, 1);
   fmt::print("problem     {} ({})\n", problem.name, problem.file.string());
   printRobot(problem.robot);
   printControls(problem.robot);
@@ -210,6 +216,9 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   command->add_option("problem", options->problem, "problem file (XML)")->required();
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
+  command->add_option("--planner", options->planner,
+                      "check with this planner instead of the file's (see `kautham planners`)");
+  addPackagePathOption(*command, options->packagePaths);
   command->callback(
       [options, &exitCode] { exitCode = runReportingErrors([&] { return runCheck(*options); }); });
 }

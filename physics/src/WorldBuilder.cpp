@@ -130,6 +130,7 @@ class World::Builder {
     createWorld();
     buildRobot(query);
     for (std::size_t i = 0; i < problem_.objects.size(); ++i) buildObject(static_cast<int>(i));
+    if (problem_.groundHeight) buildGround(*problem_.groundHeight);
     world_.contactBuffer_.resize(static_cast<std::size_t>(problem_.physics.maxContacts));
     world_.touched_.assign(world_.bodies_.size(), 0);
   }
@@ -146,6 +147,18 @@ class World::Builder {
     world_.space_ = dSimpleSpaceCreate(nullptr);
     dSpaceSetCleanup(world_.space_, 1);
     world_.contactGroup_ = dJointGroupCreate(0);
+  }
+
+  /// Kautham's implicit ground (core::Problem::groundHeight): a plane that objects rest on and
+  /// that the robot passes through, as it does the static base of the robot.
+  void buildGround(double height) {
+    world_.tags_.push_back(
+        std::make_unique<GeomTag>(GeomTag{GeomTag::Kind::RobotBase, "ground", -1}));
+    GeomTag* tag = world_.tags_.back().get();
+    dGeomID plane = dCreatePlane(world_.space_, 0.0, 0.0, 1.0, height);
+    dGeomSetData(plane, tag);
+    dGeomSetCategoryBits(plane, tag->category());
+    dGeomSetCollideBits(plane, tag->collidesWith());
   }
 
   void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top, GeomTag::Kind kind,

@@ -181,6 +181,10 @@ struct Problem {
   InteractionConstraints interaction;
   KinodynamicLimits kinodynamics;
   Eigen::AlignedBox3d workspace;  ///< where the robot's goal link may go
+  /// Kautham's ODE environment has an implicit ground: a plane z = height that objects rest on
+  /// and the robot passes through. Set for files in Kautham's own form (no roles) planned with
+  /// physics; empty for this project's scenes, which stand on a table.
+  std::optional<double> groundHeight;
   PlannerSpec planner;
   std::vector<Query> queries;
 
