@@ -167,6 +167,21 @@ void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region
       blockers.empty() ? "" : ": ", fmt::join(blockers, ", "));
 }
 
+/// Where the goal link is at the start (before the start is checked, so a person writing
+/// <Init> sees where it put the robot even when the start is rejected).
+void printGoalLinkStart(const core::Problem& problem, const core::Query& query) {
+  const core::KinematicModel& model = problem.robot.model;
+  const auto link = model.findLink(query.goal.link);
+  if (!link) return;
+  const auto poses =
+      model.linkPoses(problem.robot.home.isometry(), problem.initialJointValues(query));
+  const Eigen::Vector3d p = poses[static_cast<std::size_t>(*link)].translation();
+  const Eigen::Vector3d z = poses[static_cast<std::size_t>(*link)].linear().col(2);
+  fmt::print(
+      "start       {}: {} at ({:.3f}, {:.3f}, {:.3f}), its +z along ({:.2f}, {:.2f}, {:.2f})\n",
+      query.name, query.goal.link, p.x(), p.y(), p.z(), z.x(), z.y(), z.z());
+}
+
 int runCheck(const CheckOptions& options) {
   applyPackagePaths(options.packagePaths);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
@@ -180,6 +195,7 @@ int runCheck(const CheckOptions& options) {
   printSettings(problem);
   fmt::print("planner     {}\n", request.planner);
   for (std::size_t q = 0; q < problem.queries.size(); ++q) {
+    printGoalLinkStart(problem, problem.queries[q]);
     const auto context = makeCheckedContext(problem, q, request);  // throws if the start is bad
     const double* start = context->startState().data();
     const Eigen::Vector3d goal = context->goal().position();

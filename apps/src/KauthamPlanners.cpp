@@ -58,11 +58,11 @@ std::optional<std::string> plannerToUse(const core::Problem& problem,
     case KauthamPlanner::Kind::Unknown:  // the registry's message lists the known names
       return std::nullopt;
     case KauthamPlanner::Kind::Mapped:
-      core::warning(problem.planner.where.str() + ": " + kind.note);
+      core::warning(problem.planner.nameWhere.str() + ": " + kind.note);
       return kind.planner;
     case KauthamPlanner::Kind::Geometric:
-      if (!lenient) throw core::InputError(problem.planner.where, kind.note);
-      core::warning(problem.planner.where.str() + ": " + kind.note + "; checked with '" +
+      if (!lenient) throw core::InputError(problem.planner.nameWhere, kind.note);
+      core::warning(problem.planner.nameWhere.str() + ": " + kind.note + "; checked with '" +
                     kind.planner + "'");
       return kind.planner;
   }

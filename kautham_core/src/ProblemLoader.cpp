@@ -512,6 +512,7 @@ class ProblemReader {
     if (!name || xml_.elementText(*name).empty())
       xml_.fail(parameters, "<Parameters> needs <Name>PlannerName</Name>");
     problem_.planner.name = xml_.elementText(*name);
+    problem_.planner.nameWhere = xml_.at(*name);
     for (const XMLElement* p = parameters.FirstChildElement("Parameter"); p;
          p = p->NextSiblingElement("Parameter")) {
       PlannerParameter parameter{xml_.requiredText(*p, "name"), xml_.elementText(*p), xml_.at(*p)};

@@ -169,24 +169,26 @@ class World::Builder {
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
       for (const core::CollisionShape& collision : model.links[link].collisions) {
-        dGeomID geom = createGeom(collision.shape, body != nullptr);
+        Eigen::Vector3d shift = Eigen::Vector3d::Zero();  // a convex hull's centre
+        dGeomID geom = createGeom(collision.shape, body != nullptr, shift);
         dSpaceAdd(space ? space : world_.space_, geom);
         dGeomSetData(geom, tag);
         dGeomSetCategoryBits(geom, tag->category());
         dGeomSetCollideBits(geom, tag->collidesWith());
         const Eigen::Isometry3d pose = topInWorldOrBody * groups.inGroup[link] * collision.origin;
         world_.layout_.shapes.push_back({collision.shape, bodyIndex, pose, name, roleName(kind)});
+        const Eigen::Isometry3d geomPose = pose * Eigen::Translation3d(shift);
         dMatrix3 rotation;
-        toOdeRotation(pose.linear(), rotation);
+        toOdeRotation(geomPose.linear(), rotation);
         if (body) {
           world_.dynamicGeoms_.push_back(geom);
           dGeomSetBody(geom, body);
-          dGeomSetOffsetPosition(geom, pose.translation().x(), pose.translation().y(),
-                                 pose.translation().z());
+          dGeomSetOffsetPosition(geom, geomPose.translation().x(), geomPose.translation().y(),
+                                 geomPose.translation().z());
           dGeomSetOffsetRotation(geom, rotation);
         } else {
-          dGeomSetPosition(geom, pose.translation().x(), pose.translation().y(),
-                           pose.translation().z());
+          dGeomSetPosition(geom, geomPose.translation().x(), geomPose.translation().y(),
+                           geomPose.translation().z());
           dGeomSetRotation(geom, rotation);
         }
       }
@@ -195,7 +197,7 @@ class World::Builder {
 
   /// Meshes collide as their convex hull on bodies, as their triangles when fixed: ODE's
   /// trimesh-trimesh contacts are slow and unstable, and a fixed trimesh never meets another.
-  dGeomID createGeom(const core::Shape& shape, bool onBody) {
+  dGeomID createGeom(const core::Shape& shape, bool onBody, Eigen::Vector3d& shift) {
     const auto* mesh = std::get_if<core::Mesh>(&shape);
     if (!mesh) return createPrimitive(shape);
     std::shared_ptr<OdeMeshData>& data = meshData_[mesh->data.get()];
@@ -203,7 +205,9 @@ class World::Builder {
       data = std::make_shared<OdeMeshData>(*mesh);
       world_.meshData_.push_back(data);
     }
-    return onBody ? data->createConvex() : data->createTriMesh();
+    if (!onBody) return data->createTriMesh();
+    shift = data->convexCentre();
+    return data->createConvex();
   }
 
   /// Creates the body of a group whose top link is at `topPose`; returns it and records it.

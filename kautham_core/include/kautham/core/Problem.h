@@ -162,6 +162,7 @@ struct PlannerParameter {
 
 struct PlannerSpec {
   std::string name;
+  SourceLocation nameWhere;  ///< the <Name> element
   std::vector<PlannerParameter> parameters;
   SourceLocation where;
 };
