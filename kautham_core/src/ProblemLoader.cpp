@@ -334,10 +334,41 @@ class ProblemReader {
     xml_.fail(e, "unknown role '" + role + "'; expected fixed, movable or target");
   }
 
+  /// A URDF inertia far below what the link's mass and size imply (Kautham's walls: 2 kg, 9 m
+  /// long, the inertia of a 5 cm cube) makes ODE spin or jitter the body. Such an inertia is
+  /// replaced by that of the solid box around the link's collision shapes, with a warning.
+  static void repairTinyInertia(ObjectInstance& object) {
+    for (Link& link : object.model.links) {
+      const double mass = link.inertial.mass;
+      if (!(mass > 0.0) || link.collisions.empty()) continue;
+      Eigen::AlignedBox3d box;
+      for (const CollisionShape& c : link.collisions) box.extend(boundingBox(c.shape, c.origin));
+      const Eigen::Vector3d size = box.sizes();
+      const Eigen::Vector3d solid(mass / 12.0 * (size.y() * size.y() + size.z() * size.z()),
+                                  mass / 12.0 * (size.x() * size.x() + size.z() * size.z()),
+                                  mass / 12.0 * (size.x() * size.x() + size.y() * size.y()));
+      const Eigen::Vector3d given = link.inertial.inertia.diagonal();
+      bool tiny = false;
+      for (int i = 0; i < 3; ++i) tiny |= given[i] < 0.01 * solid[i];
+      if (!tiny) continue;
+      warnOnce(object.urdf.string() + "\n" + link.name,
+               object.urdf.string() + ": link '" + link.name + "': its inertia (" +
+                   std::to_string(given.x()) + ", " + std::to_string(given.y()) + ", " +
+                   std::to_string(given.z()) + ") is far below that of a " + std::to_string(mass) +
+                   " kg body of its size, which ODE cannot simulate "
+                   "steadily; using the solid box's (" +
+                   std::to_string(solid.x()) + ", " + std::to_string(solid.y()) + ", " +
+                   std::to_string(solid.z()) + ")");
+      link.inertial.inertia = solid.asDiagonal();
+      link.inertial.origin.linear().setIdentity();
+    }
+  }
+
   void readObstacle(const XMLElement& e) {
     xml_.allowAttributes(e, {"obstacle", "scale", "name", "role"});
     ObjectInstance object;
     readModel(e, "obstacle", object);
+    repairTinyInertia(object);
     object.role = readRole(e, object.model);
     if (const XMLElement* u = e.FirstChildElement("Uncertainty")) {
       xml_.allowAttributes(*u, {"x", "y", "yaw"});

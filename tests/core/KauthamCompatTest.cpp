@@ -190,6 +190,27 @@ TEST(MimicJoint, AMimicJointFollowsItsLeaderAndHasNoControlOfItsOwn) {
   EXPECT_NEAR(model.joints[1].maxVelocity, model.joints[0].maxVelocity * 1.0 / 2.0, 1e-12);
 }
 
+TEST(KauthamOdeDemo, GroundPlaneFloatingObjectsAndTinyInertiaAreHandledAndSaid) {
+  Warnings warnings;
+  const Problem problem = loadProblem(compatFile("mimic_arm.xml"));
+  ASSERT_TRUE(problem.groundHeight.has_value());
+  EXPECT_DOUBLE_EQ(*problem.groundHeight, 0.0);
+  const ObjectInstance& wall = problem.objects.at(0);
+  EXPECT_EQ(wall.role, ObjectRole::Movable);  // it has a mass and the planner simulates
+  EXPECT_NEAR(wall.model.links[0].inertial.inertia(2, 2), 2.0 / 12.0 * (9.0 + 0.25), 1e-9);
+  EXPECT_EQ(warnings.count("long_wall.urdf: link 'base': its inertia"), 1);
+  // The block (its mesh's bottom at y... z = -0.03) floated 10 cm up: it starts on the ground.
+  const ObjectInstance& block = problem.objects.at(1);
+  EXPECT_NEAR(boundsAtHome(block).min().z(), 0.0, 1e-6);
+  EXPECT_EQ(warnings.count("object 'iv_block' starts 0.100 m above Kautham's ground"), 1);
+}
+
+TEST(KauthamOdeDemo, AGeometricKauthamPlannerKeepsEveryObjectFixed) {
+  const Problem problem = loadProblem(compatFile("mobile_base.xml"));
+  EXPECT_FALSE(problem.groundHeight.has_value());
+  for (const ObjectInstance& object : problem.objects) EXPECT_EQ(object.role, ObjectRole::Fixed);
+}
+
 // ----- Kautham's mobile base -----
 
 TEST(KauthamMobileBase, LimitsAreInTheWorldAPinnedAxisStaysAtHomeAndX3Turns) {
