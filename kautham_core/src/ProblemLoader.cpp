@@ -571,7 +571,10 @@ class ProblemReader {
         xml_.fail(*named, "give either <RobotControl init=.. goal=..> or <Init>/<Goal>, not both");
       readRobotControl(*named, query, region != nullptr);
     } else {
-      if (init) query.init = readControls(*init, xml_.numbersInText(*init), "<Init>");
+      if (init && init->FirstChildElement())
+        query.initJoints = readInitJoints(*init);
+      else if (init)
+        query.init = readControls(*init, xml_.numbersInText(*init), "<Init>");
       if (goal) query.goal.controls = readControls(*goal, xml_.numbersInText(*goal), "<Goal>");
     }
     if (region) {
@@ -587,6 +590,58 @@ class ProblemReader {
                 "<Goal> configuration");
     }
     problem_.queries.push_back(query);
+  }
+
+  /// <Init><Joint name="elbow" value="1.57"/>...</Init>: a start a person can write, joint by
+  /// joint in radians (metres for prismatic joints), by joint or child link name. Joints not
+  /// named start where the controls' middle puts them; mimic joints follow their leader.
+  std::vector<double> readInitJoints(const XMLElement& init) const {
+    xml_.allowChildren(init, {"Joint"});
+    if (!xml_.elementText(init).empty())
+      xml_.fail(init,
+                "<Init> holds either normalized controls as text or <Joint> elements, not both");
+    const KinematicModel& model = problem_.robot.model;
+    const std::vector<int> movable = model.movableJoints();
+    std::vector<double> values = problem_.robot.initialJoints;
+    std::vector<bool> given(movable.size(), false);
+    for (const XMLElement* j = init.FirstChildElement("Joint"); j;
+         j = j->NextSiblingElement("Joint")) {
+      xml_.allowAttributes(*j, {"name", "value"});
+      const std::string name = xml_.requiredText(*j, "name");
+      std::optional<std::size_t> dof;
+      for (std::size_t i = 0; i < movable.size(); ++i) {
+        const Joint& joint = model.joints[movable[i]];
+        if (name == joint.name || name == model.links[joint.childLink].name) dof = i;
+      }
+      if (!dof) {
+        std::string known;
+        for (int m : movable) known += " " + model.joints[m].name;
+        xml_.fail(*j, "<Joint name=\"" + name + "\"> names no movable joint of '" +
+                          problem_.robot.name + "'; its movable joints:" + known);
+      }
+      const Joint& joint = model.joints[movable[*dof]];
+      if (joint.mimic)
+        xml_.fail(*j, "joint '" + joint.name + "' mimics '" + joint.mimic->joint +
+                          "' (URDF <mimic>): give its leader's value instead");
+      if (given[*dof]) xml_.fail(*j, "joint '" + joint.name + "' is given twice");
+      const double value = xml_.requiredNumber(*j, "value");
+      if (value < joint.lower - 1e-9 || value > joint.upper + 1e-9)
+        xml_.fail(*j, "joint '" + joint.name + "' = " + std::to_string(value) +
+                          " is outside its limits [" + std::to_string(joint.lower) + ", " +
+                          std::to_string(joint.upper) +
+                          (joint.type == JointType::Prismatic ? "] m" : "] rad"));
+      values[*dof] = value;
+      given[*dof] = true;
+    }
+    for (std::size_t i = 0; i < movable.size(); ++i) {
+      const Joint& joint = model.joints[movable[i]];
+      if (!joint.mimic) continue;
+      for (std::size_t l = 0; l < movable.size(); ++l)
+        if (model.joints[movable[l]].name == joint.mimic->joint)
+          values[i] = std::clamp(joint.mimic->multiplier * values[l] + joint.mimic->offset,
+                                 joint.lower, joint.upper);
+    }
+    return values;
   }
 
   /// A named query line: <RobotControl name="robot" init="c1 c2 .." goal="c1 c2 .."/>.

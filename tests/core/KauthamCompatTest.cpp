@@ -211,6 +211,30 @@ TEST(KauthamOdeDemo, AGeometricKauthamPlannerKeepsEveryObjectFixed) {
   for (const ObjectInstance& object : problem.objects) EXPECT_EQ(object.role, ObjectRole::Fixed);
 }
 
+// ----- a start a person can write -----
+
+TEST(InitJoints, InitByJointNameInRadiansAndTheMimicJointFollows) {
+  const Problem problem = loadProblem(compatFile("init_joints.xml"));
+  const std::vector<double> start = problem.initialJointValues(problem.queries.at(0));
+  ASSERT_EQ(start.size(), 2u);
+  EXPECT_DOUBLE_EQ(start[0], 0.8);
+  EXPECT_DOUBLE_EQ(start[1], 0.4);
+}
+
+TEST(InitJoints, AValueOutsideTheJointsLimitsNamesTheLineAndTheLimits) {
+  try {
+    loadProblem(compatFile("init_joint_outside.xml"));
+    FAIL() << "loaded";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.where().line, 19);
+    EXPECT_NE(message.find("joint 'shoulder' = 1.500000 is outside its limits [-1.000000, "
+                           "1.000000] rad"),
+              std::string::npos)
+        << message;
+  }
+}
+
 // ----- Kautham's mobile base -----
 
 TEST(KauthamMobileBase, LimitsAreInTheWorldAPinnedAxisStaysAtHomeAndX3Turns) {

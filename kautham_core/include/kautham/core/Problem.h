@@ -149,6 +149,9 @@ struct Query {
   /// Normalized initial controls in [0,1] (Kautham's <Init>, one per control); empty: every
   /// joint at 0, clamped into its limits.
   std::vector<double> init;
+  /// <Init><Joint name value/>...</Init>: the start given joint by joint (radians, metres), in
+  /// the order of movableJoints(); when set it replaces `init`.
+  std::vector<double> initJoints;
   GoalRegion goal;
   SourceLocation where;
 };
