@@ -3,6 +3,7 @@
 // (test data outside the project, ../shared/robots) is there.
 
 #include <filesystem>
+#include <regex>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -18,6 +19,37 @@ using test::CommandRun;
 using test::kautham;
 
 const std::string kMobileBase = "tests/data/kautham_compat/mobile_base.xml";
+
+using StartSceneTest = test::TemporaryFolderTest;
+
+/// `kautham view PROBLEM.xml -o page`, then the page's self-test in headless Chromium; returns
+/// the verdict (the page's title).
+std::string startSceneVerdict(const fs::path& folder, const std::string& problem) {
+  const fs::path page = folder / "start.html";
+  const CommandRun view = kautham("view " + problem + " -o '" + page.string() + "'");
+  EXPECT_EQ(view.exitCode, 0) << view.output;
+  EXPECT_NE(view.output.find("start     "), std::string::npos) << view.output;
+  const CommandRun dom = test::run(
+      "timeout 120 chromium --headless --no-sandbox --disable-gpu --use-angle=swiftshader "
+      "--enable-unsafe-swiftshader --disable-quic --no-first-run --disable-background-networking "
+      "--disable-component-update --disable-sync --user-data-dir='" +
+      (folder / "profile").string() +
+      "' --virtual-time-budget=5000 --window-size=1200,800 --dump-dom 'file://" +
+      fs::absolute(page).string() + "#selftest' 2>/dev/null");
+  std::smatch title;
+  if (!std::regex_search(dom.output, title, std::regex("<title>([^<]*)</title>")))
+    return "no title: " + dom.output.substr(0, 500);
+  return title[1];
+}
+
+TEST_F(StartSceneTest, ViewOfAProblemFileShowsItsStartInThePlanPage) {
+  const std::string verdict = startSceneVerdict(folder, "tests/data/kautham_compat/mimic_arm.xml");
+  // the arm's 3 links and 2 objects; its 3 STL meshes drawn with all their triangles
+  EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=", 0), 0u) << verdict;
+  EXPECT_NE(verdict.find(" meshes=4 "), std::string::npos) << verdict;
+  const std::string page = test::readFile(folder / "start.html");
+  EXPECT_NE(page.find("\"start_scene\""), std::string::npos);
+}
 
 TEST(KauthamPlannerNames, CheckAcceptsAGeometricKauthamPlannerAndSaysWhichPlannerToUse) {
   const CommandRun run = kautham("check " + kMobileBase);
@@ -72,6 +104,14 @@ TEST(Ur5Description, TheUr5ProblemLoadsAndPlansWhenItsPackageIsThere) {
   const CommandRun plan = kautham("plan problems/ur5_cans.xml --seed 1 --time 30");
   EXPECT_EQ(plan.exitCode, 0) << plan.output;
   EXPECT_NE(plan.output.find("reaches the goal"), std::string::npos) << plan.output;
+}
+
+TEST_F(StartSceneTest, TheUr5ProblemsStartSceneShowsInABrowser) {
+  if (!fs::is_directory(test::repoFile("../shared/robots/ur_description")))
+    GTEST_SKIP() << "the UR5 description (test data outside the project) is not at "
+                 << test::repoFile("../shared/robots/ur_description");
+  const std::string verdict = startSceneVerdict(folder, "problems/ur5_cans.xml");
+  EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=10 shapes=12 meshes=7 moved=none", 0), 0u) << verdict;
 }
 
 }  // namespace
