@@ -111,7 +111,8 @@ TEST_F(StartSceneTest, TheUr5ProblemsStartSceneShowsInABrowser) {
     GTEST_SKIP() << "the UR5 description (test data outside the project) is not at "
                  << test::repoFile("../shared/robots/ur_description");
   const std::string verdict = startSceneVerdict(folder, "problems/ur5_cans.xml");
-  EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=10 shapes=12 meshes=7 moved=none", 0), 0u) << verdict;
+  EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=10 shapes=12 meshes=7 moved=none", 0), 0u)
+      << verdict;
 }
 
 }  // namespace
