@@ -11,6 +11,7 @@
 #include "SideGraspClutter.h"
 #include "StartCheck.h"
 #include "kautham/core/ApproachCorridor.h"
+#include "kautham/core/Log.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -50,6 +51,31 @@ void printRobot(const core::RobotInstance& robot) {
                prismatic ? "m" : "rad", joint.maxVelocity, prismatic ? "m/s" : "rad/s",
                joint.maxEffort, prismatic ? "N" : "N m");
   }
+}
+
+/// Robot links that move but have no mass (no <inertial>, nor one on a link fixed to them): the
+/// physics gives their body a small default, which decides how hard they push.
+void warnMasslessLinks(const core::RobotInstance& robot) {
+  const core::KinematicModel& model = robot.model;
+  std::vector<std::string> massless;
+  for (int j : model.movableJoints()) {
+    double mass = 0.0;
+    std::vector<int> pending{model.joints[j].childLink};
+    while (!pending.empty()) {
+      const int link = pending.back();
+      pending.pop_back();
+      mass += model.links[static_cast<std::size_t>(link)].inertial.mass;
+      for (int c : model.links[static_cast<std::size_t>(link)].childJoints)
+        if (!model.joints[c].isMovable()) pending.push_back(model.joints[c].childLink);
+    }
+    if (!(mass > 0.0))
+      massless.push_back(model.links[static_cast<std::size_t>(model.joints[j].childLink)].name);
+  }
+  if (!massless.empty())
+    core::warning(fmt::format(
+        "{}: robot links without <inertial> (their bodies get 0.1 kg, which sets how hard they "
+        "push): {}",
+        robot.urdf.string(), fmt::join(massless, ", ")));
 }
 
 /// Every mesh of the robot and the objects: how big it is, and how it collides.
@@ -190,6 +216,7 @@ int runCheck(const CheckOptions& options) {
       problem, plannerToUse(problem, options.planner, /*lenient=*/true), {}, 1);
   fmt::print("problem     {} ({})\n", problem.name, problem.file.string());
   printRobot(problem.robot);
+  warnMasslessLinks(problem.robot);
   printControls(problem.robot);
   printObjects(problem);
   printSettings(problem);

@@ -83,6 +83,15 @@ TEST(KauthamPlannerNames, CheckTakesPlannerAndNoWarningIsPrintedOnStdout) {
       << run.output;
 }
 
+TEST(CheckWarnings, RobotLinksWithoutInertialAreNamed) {
+  const CommandRun run = kautham("check tests/data/kautham_compat/massless_arm.xml");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("massless_arm.urdf: robot links without <inertial> (their bodies get "
+                            "0.1 kg, which sets how hard they push): paddle"),
+            std::string::npos)
+      << run.output;
+}
+
 TEST(PackagePathOption, IsReadAsNameEqualsDirAndCheckedEarly) {
   const CommandRun run = kautham(
       "check tests/data/kautham_compat/mimic_arm.xml --package-path "
