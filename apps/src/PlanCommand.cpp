@@ -73,6 +73,18 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
       properties += (properties.empty() ? "" : ", ") + name + " " + value;
     fmt::print("planner   {}\n", properties);
   }
+  // A tree that hardly grows: say which rules rejected the states the planner tried.
+  const auto rejections = context.rejections();
+  if (!outcome.solved && !rejections.empty()) {
+    std::uint64_t total = 0;
+    std::string reasons;
+    for (const auto& [violation, count] : rejections) {
+      total += count;
+      reasons +=
+          fmt::format("{}{} {}", reasons.empty() ? "" : ", ", physics::toString(violation), count);
+    }
+    fmt::print("rejected  {} states: {}\n", total, reasons);
+  }
   if (outcome.controls.empty()) return;
   fmt::print("plan      {} controls, {:.2f} s of motion\n", outcome.controls.size(),
              replay.frames.back().time);
