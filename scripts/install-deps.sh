@@ -8,7 +8,7 @@ PACKAGES=(
   build-essential cmake pkg-config ninja-build clang-format clang libclang-rt-14-dev
   libompl-dev libboost-serialization-dev libboost-filesystem-dev libboost-system-dev
   libode-dev libeigen3-dev liburdfdom-dev liburdfdom-headers-dev
-  libassimp-dev libqhull-dev libtinyxml2-dev liboctomap-dev
+  libassimp-dev libqhull-dev libtinyxml2-dev liboctomap-dev libcoin-dev
   libcli11-dev nlohmann-json3-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-three chromium

@@ -6,9 +6,12 @@
 #include <fmt/ranges.h>
 
 #include "Commands.h"
+#include "KauthamPlanners.h"
+#include "PackagePathOption.h"
 #include "SideGraspClutter.h"
 #include "StartCheck.h"
 #include "kautham/core/ApproachCorridor.h"
+#include "kautham/core/Log.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -18,6 +21,8 @@ namespace {
 struct CheckOptions {
   std::string problem;
   std::vector<std::string> modelDirs;
+  std::vector<std::string> packagePaths;
+  std::optional<std::string> planner;
 };
 
 const char* jointTypeName(core::JointType type) {
@@ -46,6 +51,31 @@ void printRobot(const core::RobotInstance& robot) {
                prismatic ? "m" : "rad", joint.maxVelocity, prismatic ? "m/s" : "rad/s",
                joint.maxEffort, prismatic ? "N" : "N m");
   }
+}
+
+/// Robot links that move but have no mass (no <inertial>, nor one on a link fixed to them): the
+/// physics gives their body a small default, which decides how hard they push.
+void warnMasslessLinks(const core::RobotInstance& robot) {
+  const core::KinematicModel& model = robot.model;
+  std::vector<std::string> massless;
+  for (int j : model.movableJoints()) {
+    double mass = 0.0;
+    std::vector<int> pending{model.joints[j].childLink};
+    while (!pending.empty()) {
+      const int link = pending.back();
+      pending.pop_back();
+      mass += model.links[static_cast<std::size_t>(link)].inertial.mass;
+      for (int c : model.links[static_cast<std::size_t>(link)].childJoints)
+        if (!model.joints[c].isMovable()) pending.push_back(model.joints[c].childLink);
+    }
+    if (!(mass > 0.0))
+      massless.push_back(model.links[static_cast<std::size_t>(model.joints[j].childLink)].name);
+  }
+  if (!massless.empty())
+    core::warning(fmt::format(
+        "{}: robot links without <inertial> (their bodies get 0.1 kg, which sets how hard they "
+        "push): {}",
+        robot.urdf.string(), fmt::join(massless, ", ")));
 }
 
 /// Every mesh of the robot and the objects: how big it is, and how it collides.
@@ -163,17 +193,36 @@ void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region
       blockers.empty() ? "" : ": ", fmt::join(blockers, ", "));
 }
 
+/// Where the goal link is at the start (before the start is checked, so a person writing
+/// <Init> sees where it put the robot even when the start is rejected).
+void printGoalLinkStart(const core::Problem& problem, const core::Query& query) {
+  const core::KinematicModel& model = problem.robot.model;
+  const auto link = model.findLink(query.goal.link);
+  if (!link) return;
+  const auto poses =
+      model.linkPoses(problem.robot.home.isometry(), problem.initialJointValues(query));
+  const Eigen::Vector3d p = poses[static_cast<std::size_t>(*link)].translation();
+  const Eigen::Vector3d z = poses[static_cast<std::size_t>(*link)].linear().col(2);
+  fmt::print(
+      "start       {}: {} at ({:.3f}, {:.3f}, {:.3f}), its +z along ({:.2f}, {:.2f}, {:.2f})\n",
+      query.name, query.goal.link, p.x(), p.y(), p.z(), z.x(), z.y(), z.z());
+}
+
 int runCheck(const CheckOptions& options) {
+  applyPackagePaths(options.packagePaths);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
-  const planners::PlanRequest request = planners::makeRequest(problem, std::nullopt, {}, 1);
+  const planners::PlanRequest request = planners::makeRequest(
+      problem, plannerToUse(problem, options.planner, /*lenient=*/true), {}, 1);
   fmt::print("problem     {} ({})\n", problem.name, problem.file.string());
   printRobot(problem.robot);
+  warnMasslessLinks(problem.robot);
   printControls(problem.robot);
   printObjects(problem);
   printSettings(problem);
   fmt::print("planner     {}\n", request.planner);
   for (std::size_t q = 0; q < problem.queries.size(); ++q) {
+    printGoalLinkStart(problem, problem.queries[q]);
     const auto context = makeCheckedContext(problem, q, request);  // throws if the start is bad
     const double* start = context->startState().data();
     const Eigen::Vector3d goal = context->goal().position();
@@ -210,6 +259,9 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   command->add_option("problem", options->problem, "problem file (XML)")->required();
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
+  command->add_option("--planner", options->planner,
+                      "check with this planner instead of the file's (see `kautham planners`)");
+  addPackagePathOption(*command, options->packagePaths);
   command->callback(
       [options, &exitCode] { exitCode = runReportingErrors([&] { return runCheck(*options); }); });
 }

@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 
 #include "Commands.h"
+#include "KauthamPlanners.h"
+#include "PackagePathOption.h"
 #include "ParameterOverrides.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
@@ -33,6 +35,7 @@ struct PlanOptions {
   std::string html;
   std::string threeDir;
   std::vector<std::string> modelDirs;
+  std::vector<std::string> packagePaths;
   std::size_t query = 0;
 };
 
@@ -70,6 +73,18 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
       properties += (properties.empty() ? "" : ", ") + name + " " + value;
     fmt::print("planner   {}\n", properties);
   }
+  // A tree that hardly grows: say which rules rejected the states the planner tried.
+  const auto rejections = context.rejections();
+  if (!outcome.solved && !rejections.empty()) {
+    std::uint64_t total = 0;
+    std::string reasons;
+    for (const auto& [violation, count] : rejections) {
+      total += count;
+      reasons +=
+          fmt::format("{}{} {}", reasons.empty() ? "" : ", ", physics::toString(violation), count);
+    }
+    fmt::print("rejected  {} states: {}\n", total, reasons);
+  }
   if (outcome.controls.empty()) return;
   fmt::print("plan      {} controls, {:.2f} s of motion\n", outcome.controls.size(),
              replay.frames.back().time);
@@ -90,14 +105,16 @@ int runPlan(const PlanOptions& options) {
   // Before planning, so that a missing three.js does not cost the planning time.
   const std::filesystem::path threeDir =
       options.html.empty() ? std::filesystem::path() : findThreeDir(options.threeDir);
+  applyPackagePaths(options.packagePaths);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
   if (options.query >= problem.queries.size())
     throw std::invalid_argument(fmt::format("--query {}: the problem has {} queries", options.query,
                                             problem.queries.size()));
-  const planners::PlanRequest request = planners::makeRequest(
-      problem, options.planner, parameterOverrides(options.sets, options.time, options.threads),
-      planners::seedRandomness(options.seed));
+  const planners::PlanRequest request =
+      planners::makeRequest(problem, plannerToUse(problem, options.planner, /*lenient=*/false),
+                            parameterOverrides(options.sets, options.time, options.threads),
+                            planners::seedRandomness(options.seed));
 
   const auto contextOwner = makeCheckedContext(problem, options.query, request);
   physics::PlanningContext& context = *contextOwner;
@@ -156,6 +173,7 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                           ", from Debian's libjs-three)");
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
+  addPackagePathOption(*command, options->packagePaths);
   command->add_option("--query", options->query, "index of the query to plan")
       ->capture_default_str();
   command->callback(

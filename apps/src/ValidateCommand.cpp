@@ -16,6 +16,7 @@
 
 #include "Commands.h"
 #include "JsonFileText.h"
+#include "PackagePathOption.h"
 #include "PlanFile.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/core/Random.h"
@@ -36,6 +37,7 @@ struct ValidateOptions {
   std::uint64_t seed = 1;
   std::string json;
   std::vector<std::string> modelDirs;
+  std::vector<std::string> packagePaths;
 };
 
 /// What validate needs of a plan file (PlanFile.cpp's format).
@@ -223,6 +225,7 @@ std::string describeUncertainty(const core::Problem& problem,
 }
 
 int runValidate(const ValidateOptions& options) {
+  applyPackagePaths(options.packagePaths);
   std::vector<fs::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   const core::Problem problem = core::loadProblem(options.problem, modelDirs);
   PlanReader reader(options.plan);
@@ -358,6 +361,7 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
   command->add_option("--json", options->json, "write the numbers to this JSON file");
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
+  addPackagePathOption(*command, options->packagePaths);
   command->footer(
       "Exit codes: 0 it ran (whatever the success rate), 2 bad input.\n"
       "Example: kautham validate problems/pusher_cans_5.xml out/plan.json --runs 100");

@@ -4,6 +4,8 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include "InventorMesh.h"
+
 namespace kautham::core {
 
 namespace {
@@ -32,9 +34,20 @@ void collect(const aiScene& scene, const aiNode& node, const aiMatrix4x4& parent
     collect(scene, *node.mChildren[c], transform, scale, out);
 }
 
+/// A scale with an odd number of negative factors mirrors the mesh, which turns its faces
+/// inside out: reverse every triangle so that they stay counter-clockwise seen from outside.
+TriangleMesh mirrorAware(TriangleMesh mesh, const Eigen::Vector3d& scale) {
+  const int negative = (scale.x() < 0) + (scale.y() < 0) + (scale.z() < 0);
+  if (negative % 2 == 1)
+    for (auto& triangle : mesh.triangles) std::swap(triangle[1], triangle[2]);
+  return mesh;
+}
+
 }  // namespace
 
 TriangleMesh loadMesh(const std::filesystem::path& file, const Eigen::Vector3d& scale) {
+  // Assimp reads no Open Inventor and only VRML 1 badly: those go to Coin3D.
+  if (isInventorFile(file)) return mirrorAware(loadInventorMesh(file, scale), scale);
   Assimp::Importer importer;
   // URDF meshes are in the link's frame as written: keep COLLADA's z-up data as it is.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
@@ -51,7 +64,7 @@ TriangleMesh loadMesh(const std::filesystem::path& file, const Eigen::Vector3d& 
   TriangleMesh mesh;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), scale, mesh);
   if (mesh.triangles.empty()) throw MeshError("the mesh holds no triangles");
-  return mesh;
+  return mirrorAware(std::move(mesh), scale);
 }
 
 }  // namespace kautham::core

@@ -53,6 +53,7 @@ std::optional<Eigen::Vector3d> Problem::goalApproach(const GoalRegion& goal) con
 }
 
 std::vector<double> Problem::initialJointValues(const Query& query) const {
+  if (!query.initJoints.empty()) return query.initJoints;
   if (query.init.empty()) return robot.initialJoints;
   return jointValuesFromControls(query.init);
 }

@@ -10,6 +10,7 @@
 
 #include "MobileBase.h"
 #include "XmlReader.h"
+#include "kautham/core/Log.h"
 #include "kautham/core/OctomapEnvironment.h"
 #include "kautham/core/UrdfLoader.h"
 
@@ -46,6 +47,13 @@ bool applyKauthamPhysicsParameter(const PlannerParameter& p, PhysicsSettings& ph
   return true;
 }
 
+/// Kautham planners that do not simulate physics: its geometric OMPL planners (omplRRT,
+/// omplPRM, ...) and its kinematic control planners (omplcRRT...). Its ODE planners (omplODE...,
+/// ...KPIECE2DPlanner, ...ChainPlanner) and ours simulate.
+bool isKauthamKinematicPlanner(const std::string& name) {
+  return name.rfind("ompl", 0) == 0 && name.rfind("omplODE", 0) != 0;
+}
+
 class ProblemReader {
  public:
   ProblemReader(const fs::path& file, std::vector<fs::path> modelDirs)
@@ -59,7 +67,9 @@ class ProblemReader {
 
   Problem read() {
     const XMLElement& root = xml_.root("Problem");
-    xml_.allowAttributes(root, {"name"});
+    if (root.Attribute("topology"))
+      warning(xml_.at(root).str() + ": <Problem topology> is used by Kautham's GUI only; ignored");
+    xml_.allowAttributes(root, {"name", "topology"});
     problem_.file = xml_.file();
     problem_.name = xml_.optionalText(root, "name").value_or(xml_.file().stem().string());
     xml_.atMostOnce(root, {"Physics", "Interaction", "Kinodynamics", "Workspace", "Uncertainty"});
@@ -68,6 +78,7 @@ class ProblemReader {
     resolvePoseUncertainty();
     if (!robotElement_) xml_.fail(root, "the problem has no <Robot>");
     if (!plannerElement_) xml_.fail(root, "the problem has no <Planner> block");
+    finishRobot();
     readControls();
     // Read last, wherever it stands: <Init> needs the robot and its controls, and Kautham's
     // physics parameters override the <Physics> block.
@@ -141,6 +152,13 @@ class ProblemReader {
     const bool robot = std::strcmp(e.Name(), "Robot") == 0;
     for (const XMLElement* c = e.FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
+      if (robot && (tag == "ViewLink" || tag == "WeightSE3" || tag == "InvKinematic" ||
+                    tag == "ConstrainedKinematic")) {
+        warnOnce(xml_.file().string() + "\n" + tag, xml_.at(*c).str() + ": <" + tag +
+                                                        "> is used by Kautham's GUI or its " +
+                                                        "inverse kinematics only; ignored");
+        continue;
+      }
       if (tag == "Limits" && !robot)
         xml_.fail(*c, "<Limits> moves a robot's base; an <Obstacle> has none");
       if (tag != "Home" && tag != "KauthamName" && tag != "Uncertainty" && tag != "Limits")
@@ -168,7 +186,8 @@ class ProblemReader {
       if (limits.axis != "X" && limits.axis != "Y" && limits.axis != "Z")
         xml_.fail(*l, "unknown <Limits name=\"" + limits.axis +
                           "\">; expected X, Y, Z (or WX, WY, WZ, TH, which are ignored)");
-      if (!(limits.min < limits.max)) xml_.fail(*l, "<Limits> needs min < max");
+      if (!(limits.min <= limits.max))
+        xml_.fail(*l, "<Limits> needs min <= max (min = max pins the base on that axis)");
       for (const BaseAxisLimits& other : axes)
         if (other.axis == limits.axis)
           xml_.fail(*l, "a second <Limits name=\"" + limits.axis + "\">");
@@ -189,19 +208,113 @@ class ProblemReader {
   }
 
   void readRobot(const XMLElement& e) {
-    if (robotElement_) xml_.fail(e, "only one <Robot> is supported per problem");
+    if (robotElement_) {
+      readExtraRobot(e);
+      return;
+    }
     robotElement_ = &e;
     xml_.allowAttributes(e, {"robot", "scale", "name"});
     if (const XMLElement* u = e.FirstChildElement("Uncertainty"))
       xml_.fail(*u, "<Uncertainty> is for objects' poses; a <Robot> has none");
     readModel(e, "robot", problem_.robot);
     problem_.robot.baseAxes = readBaseLimits(e);
-    addMobileBase(problem_.robot.model, problem_.robot.baseAxes);
-    problem_.robot.controls = ControlSet::onePerJoint(problem_.robot.model);
-    const KinematicModel& model = problem_.robot.model;
+  }
+
+  /// Kautham plans for every <Robot> together; this project plans for one. The first is the
+  /// robot; every further one stands still at its <Home> (joints at zero) as a fixed obstacle.
+  void readExtraRobot(const XMLElement& e) {
+    xml_.allowAttributes(e, {"robot", "scale", "name"});
+    ObjectInstance object;
+    readModel(e, "robot", object);
+    if (e.FirstChildElement("Limits"))
+      warning(xml_.at(e).str() + ": this second <Robot>'s <Limits> are unused");
+    freezeJoints(object.model);
+    object.role = ObjectRole::Fixed;
+    warning(xml_.at(e).str() + ": only the first <Robot> ('" + problem_.robot.name +
+            "') is planned for; robot '" + object.name +
+            "' stands still at its <Home> as a fixed obstacle");
+    problem_.objects.push_back(std::move(object));
+  }
+
+  /// Turns every movable joint into a fixed one at its value 0 (clamped into its limits).
+  static void freezeJoints(KinematicModel& model) {
+    for (Joint& joint : model.joints) {
+      if (!joint.isMovable()) continue;
+      joint.origin = joint.origin *
+                     KinematicModel::jointMotion(joint, std::clamp(0.0, joint.lower, joint.upper));
+      joint.type = JointType::Fixed;
+    }
+  }
+
+  /// The robot's base and its default controls, once the whole file is read: how Kautham places
+  /// the base depends on which base DOFs the control set names (MobileBase.h).
+  void finishRobot() {
+    RobotInstance& robot = problem_.robot;
+    std::optional<BaseDofUse> use;
+    if (controlsElement_)
+      if (const auto cntr = xml_.optionalText(*controlsElement_, "robot"))
+        use = scanBaseDofs(findModel(*controlsElement_, *cntr));
+    absorbedDofs_ = addMobileBase(robot.model, robot.baseAxes, robot.home, use ? &*use : nullptr);
+    robot.controls = ControlSet::onePerJoint(robot.model);
+    coupleMimicJoints(/*ownControls=*/true);
+    const KinematicModel& model = robot.model;
     for (int j : model.movableJoints())
-      problem_.robot.initialJoints.push_back(
-          std::clamp(0.0, model.joints[j].lower, model.joints[j].upper));
+      robot.initialJoints.push_back(std::clamp(0.0, model.joints[j].lower, model.joints[j].upper));
+  }
+
+  /// URDF <mimic> joints follow their leader: each one's row of K (and its offset) is its
+  /// leader's, scaled from the leader's normalized range onto its own, so every configuration
+  /// and every motion keeps value = multiplier * leader + offset; its speed limit is set so the
+  /// same control turns both at that ratio. Without a .cntr (`ownControls`) the mimic joint's own
+  /// control is removed.
+  void coupleMimicJoints(bool ownControls) {
+    RobotInstance& robot = problem_.robot;
+    KinematicModel& model = robot.model;
+    const std::vector<int> movable = model.movableJoints();
+    auto dofOf = [&](const std::string& joint) -> std::optional<Eigen::Index> {
+      for (std::size_t i = 0; i < movable.size(); ++i)
+        if (model.joints[movable[i]].name == joint) return static_cast<Eigen::Index>(i);
+      return std::nullopt;
+    };
+    ControlSet& set = robot.controls;
+    std::vector<Eigen::Index> ownColumns;
+    for (std::size_t i = 0; i < movable.size(); ++i) {
+      Joint& follower = model.joints[movable[i]];
+      if (!follower.mimic) continue;
+      const auto lead = dofOf(follower.mimic->joint);
+      if (!lead || model.joints[movable[*lead]].mimic)
+        throw InputError(robot.where, "joint '" + follower.name + "' mimics '" +
+                                          follower.mimic->joint +
+                                          "', which is not a movable joint that moves by itself");
+      const Joint& leader = model.joints[movable[*lead]];
+      const auto row = static_cast<Eigen::Index>(i);
+      if (!ownControls && set.moves(i))
+        throw InputError(set.where, "the control set moves joint '" + follower.name +
+                                        "', which mimics '" + leader.name +
+                                        "' (URDF <mimic>): move its leader only");
+      const double leaderRange = leader.upper - leader.lower;
+      const double range = follower.upper - follower.lower;
+      const double slope = follower.mimic->multiplier * leaderRange / range;
+      const double intercept =
+          (follower.mimic->multiplier * leader.lower + follower.mimic->offset - follower.lower) /
+          range;
+      if (ownControls) ownColumns.push_back(row);  // K = I: column i moves joint i only
+      set.matrix.row(row) = slope * set.matrix.row(*lead);
+      set.offset[row] = slope * set.offset[*lead] + intercept;
+      follower.maxVelocity = leader.maxVelocity * range / leaderRange;
+    }
+    if (ownColumns.empty()) return;
+    Eigen::MatrixXd matrix(set.matrix.rows(),
+                           set.matrix.cols() - static_cast<Eigen::Index>(ownColumns.size()));
+    std::vector<std::string> names;
+    Eigen::Index kept = 0;
+    for (Eigen::Index c = 0; c < set.matrix.cols(); ++c) {
+      if (std::find(ownColumns.begin(), ownColumns.end(), c) != ownColumns.end()) continue;
+      matrix.col(kept++) = set.matrix.col(c);
+      names.push_back(set.names[static_cast<std::size_t>(c)]);
+    }
+    set.matrix = matrix;
+    set.names = names;
   }
 
   /// Without a role attribute (Kautham's own files), an object with mass in its URDF can be
@@ -221,10 +334,41 @@ class ProblemReader {
     xml_.fail(e, "unknown role '" + role + "'; expected fixed, movable or target");
   }
 
+  /// A URDF inertia far below what the link's mass and size imply (Kautham's walls: 2 kg, 9 m
+  /// long, the inertia of a 5 cm cube) makes ODE spin or jitter the body. Such an inertia is
+  /// replaced by that of the solid box around the link's collision shapes, with a warning.
+  static void repairTinyInertia(ObjectInstance& object) {
+    for (Link& link : object.model.links) {
+      const double mass = link.inertial.mass;
+      if (!(mass > 0.0) || link.collisions.empty()) continue;
+      Eigen::AlignedBox3d box;
+      for (const CollisionShape& c : link.collisions) box.extend(boundingBox(c.shape, c.origin));
+      const Eigen::Vector3d size = box.sizes();
+      const Eigen::Vector3d solid(mass / 12.0 * (size.y() * size.y() + size.z() * size.z()),
+                                  mass / 12.0 * (size.x() * size.x() + size.z() * size.z()),
+                                  mass / 12.0 * (size.x() * size.x() + size.y() * size.y()));
+      const Eigen::Vector3d given = link.inertial.inertia.diagonal();
+      bool tiny = false;
+      for (int i = 0; i < 3; ++i) tiny |= given[i] < 0.01 * solid[i];
+      if (!tiny) continue;
+      warnOnce(object.urdf.string() + "\n" + link.name,
+               object.urdf.string() + ": link '" + link.name + "': its inertia (" +
+                   std::to_string(given.x()) + ", " + std::to_string(given.y()) + ", " +
+                   std::to_string(given.z()) + ") is far below that of a " + std::to_string(mass) +
+                   " kg body of its size, which ODE cannot simulate "
+                   "steadily; using the solid box's (" +
+                   std::to_string(solid.x()) + ", " + std::to_string(solid.y()) + ", " +
+                   std::to_string(solid.z()) + ")");
+      link.inertial.inertia = solid.asDiagonal();
+      link.inertial.origin.linear().setIdentity();
+    }
+  }
+
   void readObstacle(const XMLElement& e) {
     xml_.allowAttributes(e, {"obstacle", "scale", "name", "role"});
     ObjectInstance object;
     readModel(e, "obstacle", object);
+    repairTinyInertia(object);
     object.role = readRole(e, object.model);
     if (const XMLElement* u = e.FirstChildElement("Uncertainty")) {
       xml_.allowAttributes(*u, {"x", "y", "yaw"});
@@ -364,7 +508,8 @@ class ProblemReader {
     const fs::path file = findModel(e, xml_.requiredText(e, "robot"));
     RobotInstance& robot = problem_.robot;
     try {
-      robot.controls = loadControlSet(file, robot.model, where);
+      robot.controls = loadControlSet(file, robot.model, where, absorbedDofs_);
+      coupleMimicJoints(/*ownControls=*/false);
     } catch (const InputError& error) {
       if (error.where().file == where.file) throw;
       throw InputError(error.where(),
@@ -402,6 +547,7 @@ class ProblemReader {
     if (!name || xml_.elementText(*name).empty())
       xml_.fail(parameters, "<Parameters> needs <Name>PlannerName</Name>");
     problem_.planner.name = xml_.elementText(*name);
+    problem_.planner.nameWhere = xml_.at(*name);
     for (const XMLElement* p = parameters.FirstChildElement("Parameter"); p;
          p = p->NextSiblingElement("Parameter")) {
       PlannerParameter parameter{xml_.requiredText(*p, "name"), xml_.elementText(*p), xml_.at(*p)};
@@ -429,7 +575,10 @@ class ProblemReader {
         xml_.fail(*named, "give either <RobotControl init=.. goal=..> or <Init>/<Goal>, not both");
       readRobotControl(*named, query, region != nullptr);
     } else {
-      if (init) query.init = readControls(*init, xml_.numbersInText(*init), "<Init>");
+      if (init && init->FirstChildElement())
+        query.initJoints = readInitJoints(*init);
+      else if (init)
+        query.init = readControls(*init, xml_.numbersInText(*init), "<Init>");
       if (goal) query.goal.controls = readControls(*goal, xml_.numbersInText(*goal), "<Goal>");
     }
     if (region) {
@@ -445,6 +594,58 @@ class ProblemReader {
                 "<Goal> configuration");
     }
     problem_.queries.push_back(query);
+  }
+
+  /// <Init><Joint name="elbow" value="1.57"/>...</Init>: a start a person can write, joint by
+  /// joint in radians (metres for prismatic joints), by joint or child link name. Joints not
+  /// named start where the controls' middle puts them; mimic joints follow their leader.
+  std::vector<double> readInitJoints(const XMLElement& init) const {
+    xml_.allowChildren(init, {"Joint"});
+    if (!xml_.elementText(init).empty())
+      xml_.fail(init,
+                "<Init> holds either normalized controls as text or <Joint> elements, not both");
+    const KinematicModel& model = problem_.robot.model;
+    const std::vector<int> movable = model.movableJoints();
+    std::vector<double> values = problem_.robot.initialJoints;
+    std::vector<bool> given(movable.size(), false);
+    for (const XMLElement* j = init.FirstChildElement("Joint"); j;
+         j = j->NextSiblingElement("Joint")) {
+      xml_.allowAttributes(*j, {"name", "value"});
+      const std::string name = xml_.requiredText(*j, "name");
+      std::optional<std::size_t> dof;
+      for (std::size_t i = 0; i < movable.size(); ++i) {
+        const Joint& joint = model.joints[movable[i]];
+        if (name == joint.name || name == model.links[joint.childLink].name) dof = i;
+      }
+      if (!dof) {
+        std::string known;
+        for (int m : movable) known += " " + model.joints[m].name;
+        xml_.fail(*j, "<Joint name=\"" + name + "\"> names no movable joint of '" +
+                          problem_.robot.name + "'; its movable joints:" + known);
+      }
+      const Joint& joint = model.joints[movable[*dof]];
+      if (joint.mimic)
+        xml_.fail(*j, "joint '" + joint.name + "' mimics '" + joint.mimic->joint +
+                          "' (URDF <mimic>): give its leader's value instead");
+      if (given[*dof]) xml_.fail(*j, "joint '" + joint.name + "' is given twice");
+      const double value = xml_.requiredNumber(*j, "value");
+      if (value < joint.lower - 1e-9 || value > joint.upper + 1e-9)
+        xml_.fail(*j, "joint '" + joint.name + "' = " + std::to_string(value) +
+                          " is outside its limits [" + std::to_string(joint.lower) + ", " +
+                          std::to_string(joint.upper) +
+                          (joint.type == JointType::Prismatic ? "] m" : "] rad"));
+      values[*dof] = value;
+      given[*dof] = true;
+    }
+    for (std::size_t i = 0; i < movable.size(); ++i) {
+      const Joint& joint = model.joints[movable[i]];
+      if (!joint.mimic) continue;
+      for (std::size_t l = 0; l < movable.size(); ++l)
+        if (model.joints[movable[l]].name == joint.mimic->joint)
+          values[i] = std::clamp(joint.mimic->multiplier * values[l] + joint.mimic->offset,
+                                 joint.lower, joint.upper);
+    }
+    return values;
   }
 
   /// A named query line: <RobotControl name="robot" init="c1 c2 .." goal="c1 c2 .."/>.
@@ -559,7 +760,52 @@ class ProblemReader {
 
   // ----- checks of the whole problem -----
 
+  /// Files in Kautham's own form (no roles): what Kautham's planner would do with them. Its
+  /// geometric and kinematic planners treat every obstacle as fixed, whatever its <inertial>;
+  /// its ODE environment adds a ground plane at z = 0.
+  void applyKauthamDefaults() {
+    if (rolesGiven_) return;
+    if (isKauthamKinematicPlanner(problem_.planner.name)) {
+      for (ObjectInstance& object : problem_.objects) {
+        object.role = ObjectRole::Fixed;
+        object.uncertainty = {};
+      }
+      return;
+    }
+    problem_.groundHeight = 0.0;
+    restOnGround(*problem_.groundHeight);
+  }
+
+  /// In Kautham's ODE environment an object placed above the ground with nothing under it falls
+  /// onto it when the simulation starts; here a falling object would break the interaction
+  /// rules before the robot moves. It is put where it would land, and the user is told.
+  void restOnGround(double ground) {
+    for (ObjectInstance& object : problem_.objects) {
+      if (object.role == ObjectRole::Fixed) continue;
+      const Eigen::AlignedBox3d box = boundsAtHome(object);
+      if (box.isEmpty()) continue;
+      const double gap = box.min().z() - ground;
+      if (gap <= 1e-3) continue;
+      bool supported = false;
+      for (const ObjectInstance& other : problem_.objects) {
+        if (&other == &object) continue;
+        const Eigen::AlignedBox3d below = boundsAtHome(other);
+        if (below.isEmpty() || below.max().z() > box.min().z() + 1e-3) continue;
+        supported |= below.max().z() > ground + 1e-3 && below.min().x() < box.max().x() &&
+                     box.min().x() < below.max().x() && below.min().y() < box.max().y() &&
+                     box.min().y() < below.max().y();
+      }
+      if (supported) continue;
+      object.home.position.z() -= gap;
+      warning(object.where.str() + ": object '" + object.name + "' starts " +
+              std::to_string(gap).substr(0, 5) +
+              " m above Kautham's ground (z = 0) with nothing under it; it starts on the ground, "
+              "where Kautham's physics would drop it");
+    }
+  }
+
   void check(const XMLElement& root) {
+    applyKauthamDefaults();
     checkNames();
     checkObjects(root);
     checkSupport();
@@ -614,10 +860,35 @@ class ProblemReader {
           c.where, "support '" + c.supportObject + "' must name a fixed <Obstacle> (the table)");
   }
 
-  /// Without <Workspace> (Kautham's files): the scene's bounding box, with room around it.
+  /// Without <Workspace> (Kautham's files): the scene's bounding box, with room around it. The
+  /// robot counts at every corner of its mobile base's range (joints at 0, within limits), so a
+  /// base that drives across the room keeps its goal inside.
   Eigen::AlignedBox3d defaultWorkspace() const {
     constexpr double kMargin = 0.25;  // m
-    Eigen::AlignedBox3d box = boundsAtHome(problem_.robot);
+    const RobotInstance& robot = problem_.robot;
+    const KinematicModel& model = robot.model;
+    const std::vector<int> movable = model.movableJoints();
+    std::vector<double> values;
+    std::vector<std::size_t> base;  ///< indices into `values` of the base's joints
+    for (std::size_t i = 0; i < movable.size(); ++i) {
+      const Joint& joint = model.joints[movable[i]];
+      values.push_back(std::clamp(0.0, joint.lower, joint.upper));
+      if (joint.name.rfind("base_", 0) == 0 && joint.type == JointType::Prismatic)
+        base.push_back(i);
+    }
+    Eigen::AlignedBox3d box;
+    for (unsigned corner = 0; corner < (1u << base.size()); ++corner) {
+      for (std::size_t b = 0; b < base.size(); ++b) {
+        const Joint& joint = model.joints[movable[base[b]]];
+        values[base[b]] = (corner >> b) & 1u ? joint.upper : joint.lower;
+      }
+      const auto poses = model.linkPoses(robot.home.isometry(), values);
+      for (std::size_t l = 0; l < model.links.size(); ++l) {
+        box.extend(poses[l].translation());
+        for (const CollisionShape& c : model.links[l].collisions)
+          box.extend(boundingBox(c.shape, poses[l] * c.origin));
+      }
+    }
     for (const ObjectInstance& object : problem_.objects) box.extend(boundsAtHome(object));
     box.min().array() -= kMargin;
     box.max().array() += kMargin;
@@ -645,6 +916,7 @@ class ProblemReader {
   const XMLElement* plannerElement_ = nullptr;
   const XMLElement* controlsElement_ = nullptr;
   bool rolesGiven_ = false;
+  std::set<std::string> absorbedDofs_;  ///< base DOFs a .cntr may name that have no joint
   /// Objects with an <Uncertainty> of their own (index into Problem::objects, the element).
   std::vector<std::pair<std::size_t, const XMLElement*>> ownUncertainty_;
   const XMLElement* workspaceElement_ = nullptr;

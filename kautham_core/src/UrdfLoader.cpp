@@ -1,15 +1,19 @@
 #include "kautham/core/UrdfLoader.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include <console_bridge/console.h>
 #include <urdf_parser/urdf_parser.h>
 
 #include "XmlReader.h"
+#include "kautham/core/Log.h"
 #include "kautham/core/MeshLoader.h"
+#include "kautham/core/PackagePaths.h"
 
 namespace kautham::core {
 
@@ -46,7 +50,8 @@ class UrdfConverter {
     // Keep the file's order of links and joints: it is what a user reads, and it fixes the
     // order of the degrees of freedom.
     for (auto* e = robot_.FirstChildElement("link"); e; e = e->NextSiblingElement("link"))
-      model.links.push_back(convertLink(*urdf_.getLink(e->Attribute("name"))));
+      model.links.push_back(convertLink(*urdf_.getLink(e->Attribute("name")), *e));
+    reportMissingMeshes();
     for (auto* e = robot_.FirstChildElement("joint"); e; e = e->NextSiblingElement("joint"))
       model.joints.push_back(convertJoint(*urdf_.getJoint(e->Attribute("name")), model));
     for (std::size_t j = 0; j < model.joints.size(); ++j) {
@@ -62,7 +67,41 @@ class UrdfConverter {
     throw InputError({xml_.file(), lineOf(robot_, tag, name)}, msg);
   }
 
-  Link convertLink(const urdf::Link& source) const {
+  /// Every mesh that could not be found, in one message: a user fixes the paths at once.
+  void reportMissingMeshes() const {
+    if (missing_.empty()) return;
+    std::string list;
+    for (const std::string& m : missing_) list += "\n  " + m;
+    throw InputError({xml_.file(), missingLine_}, std::to_string(missing_.size()) + " mesh file" +
+                                                      (missing_.size() == 1 ? "" : "s") +
+                                                      " not found:" + list);
+  }
+
+  /// urdfdom leaves out what it cannot read (a <collision> whose <geometry> it does not know,
+  /// say) without failing: compare with the file, so no collision shape is lost silently.
+  void checkNothingDropped(const urdf::Link& source, const tinyxml2::XMLElement& element) const {
+    int written = 0;
+    const tinyxml2::XMLElement* firstMissing = nullptr;
+    for (auto* c = element.FirstChildElement("collision"); c;
+         c = c->NextSiblingElement("collision")) {
+      ++written;
+      if (!c->FirstChildElement("geometry") && !firstMissing) firstMissing = c;
+    }
+    int read = 0;
+    for (const auto& collision : source.collision_array) read += collision && collision->geometry;
+    if (read == written) return;
+    const int line = firstMissing ? firstMissing->GetLineNum() : element.GetLineNum();
+    throw InputError(
+        {xml_.file(), line},
+        "link '" + source.name + "': urdfdom read " + std::to_string(read) + " of its " +
+            std::to_string(written) +
+            " <collision> elements; each needs a <geometry> with one <box>, "
+            "<cylinder>, <sphere> or <mesh filename=..>" +
+            (urdfMessages_.empty() ? std::string() : " (urdfdom: " + urdfMessages_ + ")"));
+  }
+
+  Link convertLink(const urdf::Link& source, const tinyxml2::XMLElement& element) {
+    checkNothingDropped(source, element);
     Link link;
     link.name = source.name;
     if (source.inertial) {
@@ -82,7 +121,7 @@ class UrdfConverter {
   }
 
   Shape convertShape(const urdf::Geometry& geometry, const std::string& linkName,
-                     std::size_t collisionIndex) const {
+                     std::size_t collisionIndex) {
     switch (geometry.type) {
       case urdf::Geometry::BOX: {
         const auto& box = static_cast<const urdf::Box&>(geometry);
@@ -117,30 +156,63 @@ class UrdfConverter {
     return 0;
   }
 
-  /// A mesh file, found relative to the URDF's folder, scaled, with its convex hull.
+  /// The file a mesh's filename names: relative to the URDF's folder, `file://` or
+  /// `package://NAME/..` (PackagePaths.h). Empty when it cannot be found; `looked` says where.
+  std::filesystem::path resolveMesh(const std::string& name, const SourceLocation& where,
+                                    const std::string& prefix, std::string& looked) const {
+    std::filesystem::path path;
+    if (name.rfind("package://", 0) == 0) {
+      const std::string rest = name.substr(10);
+      const auto slash = rest.find('/');
+      const std::string package = rest.substr(0, slash);
+      if (package.empty() || slash == std::string::npos)
+        throw InputError(where, prefix + ": a package:// path is package://NAME/path/in/package");
+      const auto root = findPackage(package, xml_.file());
+      if (!root) {
+        looked = "package '" + package + "' not found (give --package-path " + package +
+                 "=DIR, add its parent folder to ROS_PACKAGE_PATH, or keep the URDF inside the "
+                 "package, whose package.xml names it)";
+        return {};
+      }
+      path = *root / rest.substr(slash + 1);
+    } else if (name.rfind("file://", 0) == 0) {
+      path = name.substr(7);
+    } else if (name.find("://") != std::string::npos) {
+      throw InputError(where,
+                       prefix + ": only plain file paths, file:// and package:// are supported");
+    } else {
+      path = name;
+    }
+    if (path.empty()) throw InputError(where, prefix + ": mesh without a filename");
+    if (path.is_relative()) path = folder_ / path;
+    std::error_code ignored;
+    if (!std::filesystem::is_regular_file(path, ignored)) {
+      looked = "file not found (looked for '" + path.string() + "')";
+      return {};
+    }
+    return path;
+  }
+
+  /// A mesh file, found relative to the URDF's folder (or through package://), scaled, with its
+  /// convex hull. A mesh that is not found is recorded, and all are reported together.
   Shape convertMesh(const urdf::Mesh& source, const std::string& linkName,
-                    std::size_t collisionIndex) const {
+                    std::size_t collisionIndex) {
     const SourceLocation where{xml_.file(), meshLine(linkName, collisionIndex)};
     const std::string& name = source.filename;
     const std::string prefix = "link '" + linkName + "': mesh '" + name + "'";
-    if (name.rfind("package://", 0) == 0)
-      throw InputError(where, prefix +
-                                  ": package:// paths need ROS to resolve; write the path "
-                                  "relative to the URDF's folder instead (e.g. meshes/x.stl)");
-    std::filesystem::path path = name.rfind("file://", 0) == 0 ? name.substr(7) : name;
-    if (name.find("://") != std::string::npos && name.rfind("file://", 0) != 0)
-      throw InputError(where, prefix +
-                                  ": only plain file paths are supported, relative to the "
-                                  "URDF's folder");
-    if (path.empty()) throw InputError(where, "link '" + linkName + "': mesh without a filename");
-    if (path.is_relative()) path = folder_ / path;
-    std::error_code ignored;
-    if (!std::filesystem::is_regular_file(path, ignored))
-      throw InputError(where, prefix + ": file not found (looked for '" + path.string() + "')");
+    std::string looked;
+    const std::filesystem::path path = resolveMesh(name, where, prefix, looked);
+    if (path.empty()) {
+      if (missing_.empty()) missingLine_ = where.line;
+      missing_.push_back("line " + std::to_string(where.line) + ": " + prefix + ": " + looked);
+      return Sphere{0.0};  // never used: reportMissingMeshes() throws before the model is
+    }
     const Eigen::Vector3d scale =
         scale_ * Eigen::Vector3d(source.scale.x, source.scale.y, source.scale.z);
-    if (!(scale.array() > 0.0).all() || !scale.allFinite())
-      throw InputError(where, prefix + ": scale must be three positive numbers");
+    if (!(scale.array() != 0.0).all() || !scale.allFinite())
+      throw InputError(where, prefix +
+                                  ": scale must be three non-zero numbers (a negative one "
+                                  "mirrors the mesh along that axis)");
 
     auto data = std::make_shared<Mesh::Data>();
     data->source = path;
@@ -196,10 +268,33 @@ class UrdfConverter {
       fail("joint", source.name, "joint '" + source.name + "': the axis must not be zero");
     joint.axis.normalize();
     readLimits(source, joint);
+    if (source.mimic) {
+      const double lengthScale = joint.type == JointType::Prismatic ? scale_ : 1.0;
+      joint.mimic = Joint::Mimic{source.mimic->joint_name, source.mimic->multiplier,
+                                 source.mimic->offset * lengthScale};
+      if (!urdf_.getJoint(joint.mimic->joint))
+        fail("joint", source.name,
+             "joint '" + source.name + "' mimics '" + joint.mimic->joint +
+                 "', which is no joint of this robot");
+    }
     return joint;
   }
 
   void readLimits(const urdf::Joint& source, Joint& joint) const {
+    // URDF lets a continuous joint (a wheel) go without <limit>; its motor needs some.
+    if (joint.type == JointType::Continuous &&
+        (!source.limits || (source.limits->velocity == 0.0 && source.limits->effort == 0.0))) {
+      constexpr double kVelocity = 1.0;  // rad/s
+      constexpr double kEffort = 10.0;   // N m
+      warning(xml_.file().string() + ":" + std::to_string(lineOf(robot_, "joint", source.name)) +
+              ": continuous joint '" + source.name +
+              "' has no <limit velocity effort>; its motor uses 1 rad/s and 10 N m");
+      joint.maxVelocity = kVelocity;
+      joint.maxEffort = kEffort;
+      joint.lower = -M_PI;
+      joint.upper = M_PI;
+      return;
+    }
     if (!source.limits || !(source.limits->velocity > 0.0) || !(source.limits->effort > 0.0))
       fail("joint", source.name,
            "joint '" + source.name +
@@ -223,14 +318,84 @@ class UrdfConverter {
   const urdf::ModelInterface& urdf_;
   double scale_;
   const tinyxml2::XMLElement& robot_;
-  std::filesystem::path folder_;  ///< mesh paths are relative to it
+  std::filesystem::path folder_;      ///< mesh paths are relative to it
+  std::vector<std::string> missing_;  ///< meshes not found, one line each
+  int missingLine_ = 0;
+
+ public:
+  std::string urdfMessages_;  ///< what urdfdom said while parsing, for error messages
 };
 
-std::string readWholeFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+/// urdfdom's messages, kept instead of printed: errors for our message, warnings to the log.
+class UrdfMessages : public console_bridge::OutputHandler {
+ public:
+  void log(const std::string& text, console_bridge::LogLevel level, const char*, int) override {
+    if (level >= console_bridge::CONSOLE_BRIDGE_LOG_ERROR) {
+      if (!errors.empty()) errors += "; ";
+      errors += text;
+    } else if (level == console_bridge::CONSOLE_BRIDGE_LOG_WARN) {
+      warnings.push_back(text);
+    }
+  }
+  std::string errors;
+  std::vector<std::string> warnings;
+};
+
+// console_bridge's handler and level are global: one URDF at a time.
+std::mutex urdfdomMutex;
+
+/// The URDF as urdfdom should read it. urdfdom gives up on a <visual> whose <material> has no
+/// name (Kautham's URDFs, exported from its GUI, have many) and, with it, on the link's
+/// <collision>: such materials get a name of their own. Returns how many were named.
+int nameAnonymousMaterials(tinyxml2::XMLDocument& document) {
+  int named = 0;
+  std::vector<tinyxml2::XMLElement*> pending;
+  if (auto* root = document.RootElement()) pending.push_back(root);
+  while (!pending.empty()) {
+    tinyxml2::XMLElement* e = pending.back();
+    pending.pop_back();
+    if (std::strcmp(e->Name(), "material") == 0 && !e->Attribute("name"))
+      e->SetAttribute("name", ("kautham_unnamed_material_" + std::to_string(++named)).c_str());
+    for (auto* child = e->FirstChildElement(); child; child = child->NextSiblingElement())
+      pending.push_back(child);
+  }
+  return named;
+}
+
+/// Kautham reads numbers with strtod, so `ixx="0.46\n 5"` (a line break inside a number, as in
+/// Kautham's own Tiago) is 0.46 there, and urdfdom drops the whole link. Read the leading number
+/// as Kautham does, and say so.
+void repairInertialNumbers(tinyxml2::XMLDocument& document, const std::filesystem::path& file) {
+  auto* robot = document.RootElement();
+  if (!robot) return;
+  for (auto* link = robot->FirstChildElement("link"); link;
+       link = link->NextSiblingElement("link")) {
+    auto* inertial = link->FirstChildElement("inertial");
+    if (!inertial) continue;
+    for (auto* e = inertial->FirstChildElement(); e; e = e->NextSiblingElement()) {
+      for (const char* name : {"value", "ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
+        const char* text = e->Attribute(name);
+        if (!text) continue;
+        char* end = nullptr;
+        const double value = std::strtod(text, &end);
+        if (end == text) continue;  // not a number at all: urdfdom's error names it
+        std::string rest(end);
+        if (rest.find_first_not_of(" \t\r\n") == std::string::npos) continue;
+        std::ostringstream repaired;
+        repaired.precision(15);
+        repaired << value;
+        warning(file.string() + ":" + std::to_string(e->GetLineNum()) + ": <" + e->Name() + " " +
+                name + "=\"" + text + "\"> is not one number; read as " + repaired.str() +
+                ", as Kautham does (fix the file to silence this)");
+        e->SetAttribute(name, repaired.str().c_str());
+      }
+    }
+  }
+}
+
+bool endsWith(const std::string& text, const std::string& suffix) {
+  return text.size() >= suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 }  // namespace
@@ -242,18 +407,46 @@ KinematicModel loadUrdf(const std::filesystem::path& urdfFile, double scale,
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(urdfFile, ignored))
     throw InputError(requestedBy, "model file '" + urdfFile.string() + "' not found");
+  if (endsWith(urdfFile.string(), ".xacro"))
+    throw InputError(requestedBy,
+                     "'" + urdfFile.filename().string() +
+                         "' is a xacro macro file, not a URDF: expand it first, e.g. `xacro " +
+                         urdfFile.filename().string() +
+                         " > robot.urdf` (ROS's xacro tool; "
+                         "pass the macro's arguments as name:=value), and load robot.urdf");
   const XmlReader xml(urdfFile);  // reports XML syntax errors with their line
   xml.root("robot");
 
-  // urdfdom reports its errors on the console; ours carry the file name instead.
-  console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
-  const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(readWholeFile(urdfFile));
+  tinyxml2::XMLDocument document;
+  document.LoadFile(urdfFile.string().c_str());
+  nameAnonymousMaterials(document);
+  repairInertialNumbers(document, urdfFile);
+  tinyxml2::XMLPrinter printer;
+  document.Print(&printer);
+
+  UrdfMessages messages;
+  urdf::ModelInterfaceSharedPtr urdf;
+  {
+    std::lock_guard<std::mutex> lock(urdfdomMutex);
+    console_bridge::useOutputHandler(&messages);
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_WARN);
+    urdf = urdf::parseURDF(printer.CStr());
+    console_bridge::restorePreviousOutputHandler();
+    console_bridge::setLogLevel(console_bridge::CONSOLE_BRIDGE_LOG_NONE);
+  }
+  for (const std::string& w : messages.warnings)
+    if (w.find("material") == std::string::npos)  // visual colours only: not our concern
+      warnOnce(urdfFile.string() + "\n" + w, urdfFile.string() + ": urdfdom: " + w);
   if (!urdf)
-    throw InputError({urdfFile, 0},
-                     "not a valid URDF (urdfdom rejected it: check link and joint names, that "
-                     "every joint has a parent and a child, and that there is exactly one root "
-                     "link; `check_urdf` from liburdfdom-tools prints the details)");
-  return UrdfConverter(xml, *urdf, scale).convert();
+    throw InputError(
+        {urdfFile, 0},
+        "not a valid URDF (urdfdom: " +
+            (messages.errors.empty() ? std::string("no reason given") : messages.errors) +
+            "; check link and joint names, that every joint has a parent and a "
+            "child, and that there is exactly one root link)");
+  UrdfConverter converter(xml, *urdf, scale);
+  converter.urdfMessages_ = messages.errors;
+  return converter.convert();
 }
 
 }  // namespace kautham::core

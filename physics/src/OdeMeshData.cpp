@@ -4,11 +4,16 @@ namespace kautham::physics {
 
 OdeMeshData::OdeMeshData(const core::Mesh& source) : mesh(source) {
   const core::ConvexHull& hull = mesh.hull();
-  for (const Eigen::Vector3d& v : hull.vertices)
+  for (const Eigen::Vector3d& v : hull.vertices) centre_ += v;
+  if (!hull.vertices.empty()) centre_ /= static_cast<double>(hull.vertices.size());
+  for (const Eigen::Vector3d& vertex : hull.vertices) {
+    const Eigen::Vector3d v = vertex - centre_;
     convex_.points.insert(convex_.points.end(), {v.x(), v.y(), v.z()});
+  }
   for (std::size_t f = 0; f < hull.faces.size(); ++f) {
     const Eigen::Vector4d& plane = hull.planes[f];
-    convex_.planes.insert(convex_.planes.end(), {plane.x(), plane.y(), plane.z(), plane.w()});
+    const double d = plane.w() - plane.head<3>().dot(centre_);
+    convex_.planes.insert(convex_.planes.end(), {plane.x(), plane.y(), plane.z(), d});
     convex_.polygons.push_back(static_cast<unsigned>(hull.faces[f].size()));
     for (int corner : hull.faces[f]) convex_.polygons.push_back(static_cast<unsigned>(corner));
   }

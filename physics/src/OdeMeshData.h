@@ -26,8 +26,12 @@ struct OdeMeshData {
   OdeMeshData(const OdeMeshData&) = delete;
   OdeMeshData& operator=(const OdeMeshData&) = delete;
 
-  /// A new convex geometry of the hull (for bodies that move).
+  /// A new convex geometry of the hull (for bodies that move). Its frame is the hull's centre
+  /// (convexCentre() in the mesh's frame), not the mesh's origin: ODE's convex collision
+  /// (libccd) takes the geometry's origin as a point inside it, and ODE prints warnings on
+  /// stdout for a hull that does not hold its origin (links whose mesh starts at a joint).
   dGeomID createConvex();
+  const Eigen::Vector3d& convexCentre() const { return centre_; }
   /// A new trimesh geometry of the triangles (for fixed geometry).
   dGeomID createTriMesh();
 
@@ -35,6 +39,7 @@ struct OdeMeshData {
 
  private:
   Convex convex_;
+  Eigen::Vector3d centre_ = Eigen::Vector3d::Zero();
   std::vector<dReal> triVertices_;
   std::vector<dTriIndex> triIndices_;
   dTriMeshDataID triMesh_ = nullptr;

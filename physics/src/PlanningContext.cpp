@@ -1,5 +1,8 @@
 #include "kautham/physics/PlanningContext.h"
 
+#include <algorithm>
+#include <array>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -94,6 +97,20 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
 
 EndEffectorProjection& PlanningContext::projection() {
   return static_cast<EndEffectorProjection&>(*space_->getDefaultProjection());
+}
+
+std::vector<std::pair<Violation, std::uint64_t>> PlanningContext::rejections() const {
+  std::array<std::uint64_t, kViolationKinds> total{};
+  for (const auto& checker : {validity_, knowledgeValidity_})
+    if (checker)
+      for (const auto& [violation, count] : checker->rejections())
+        total[static_cast<std::size_t>(violation)] += count;
+  std::vector<std::pair<Violation, std::uint64_t>> counts;
+  for (std::size_t v = 1; v < kViolationKinds; ++v)
+    if (total[v]) counts.emplace_back(static_cast<Violation>(v), total[v]);
+  std::stable_sort(counts.begin(), counts.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  return counts;
 }
 
 void PlanningContext::usePlanningRules(ValidityRules rules) {

@@ -130,6 +130,7 @@ class World::Builder {
     createWorld();
     buildRobot(query);
     for (std::size_t i = 0; i < problem_.objects.size(); ++i) buildObject(static_cast<int>(i));
+    if (problem_.groundHeight) buildGround(*problem_.groundHeight);
     world_.contactBuffer_.resize(static_cast<std::size_t>(problem_.physics.maxContacts));
     world_.touched_.assign(world_.bodies_.size(), 0);
   }
@@ -149,6 +150,18 @@ class World::Builder {
     world_.contactGroup_ = dJointGroupCreate(0);
   }
 
+  /// Kautham's implicit ground (core::Problem::groundHeight): a plane that objects rest on and
+  /// that the robot passes through, as it does the static base of the robot.
+  void buildGround(double height) {
+    world_.tags_.push_back(
+        std::make_unique<GeomTag>(GeomTag{GeomTag::Kind::RobotBase, "ground", -1}));
+    GeomTag* tag = world_.tags_.back().get();
+    dGeomID plane = dCreatePlane(world_.space_, 0.0, 0.0, 1.0, height);
+    dGeomSetData(plane, tag);
+    dGeomSetCategoryBits(plane, tag->category());
+    dGeomSetCollideBits(plane, tag->collidesWith());
+  }
+
   void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top, GeomTag::Kind kind,
                 dBodyID body, const Eigen::Isometry3d& topInWorldOrBody, const std::string& name,
                 dSpaceID space = nullptr) {
@@ -157,24 +170,26 @@ class World::Builder {
     GeomTag* tag = world_.tags_.back().get();
     for (int link : groups.members(top)) {
       for (const core::CollisionShape& collision : model.links[link].collisions) {
-        dGeomID geom = createGeom(collision.shape, body != nullptr);
+        Eigen::Vector3d shift = Eigen::Vector3d::Zero();  // a convex hull's centre
+        dGeomID geom = createGeom(collision.shape, body != nullptr, shift);
         dSpaceAdd(space ? space : world_.space_, geom);
         dGeomSetData(geom, tag);
         dGeomSetCategoryBits(geom, tag->category());
         dGeomSetCollideBits(geom, tag->collidesWith());
         const Eigen::Isometry3d pose = topInWorldOrBody * groups.inGroup[link] * collision.origin;
         world_.layout_.shapes.push_back({collision.shape, bodyIndex, pose, name, roleName(kind)});
+        const Eigen::Isometry3d geomPose = pose * Eigen::Translation3d(shift);
         dMatrix3 rotation;
-        toOdeRotation(pose.linear(), rotation);
+        toOdeRotation(geomPose.linear(), rotation);
         if (body) {
           world_.dynamicGeoms_.push_back(geom);
           dGeomSetBody(geom, body);
-          dGeomSetOffsetPosition(geom, pose.translation().x(), pose.translation().y(),
-                                 pose.translation().z());
+          dGeomSetOffsetPosition(geom, geomPose.translation().x(), geomPose.translation().y(),
+                                 geomPose.translation().z());
           dGeomSetOffsetRotation(geom, rotation);
         } else {
-          dGeomSetPosition(geom, pose.translation().x(), pose.translation().y(),
-                           pose.translation().z());
+          dGeomSetPosition(geom, geomPose.translation().x(), geomPose.translation().y(),
+                           geomPose.translation().z());
           dGeomSetRotation(geom, rotation);
         }
       }
@@ -183,7 +198,7 @@ class World::Builder {
 
   /// Meshes collide as their convex hull on bodies, as their triangles when fixed: ODE's
   /// trimesh-trimesh contacts are slow and unstable, and a fixed trimesh never meets another.
-  dGeomID createGeom(const core::Shape& shape, bool onBody) {
+  dGeomID createGeom(const core::Shape& shape, bool onBody, Eigen::Vector3d& shift) {
     const auto* mesh = std::get_if<core::Mesh>(&shape);
     if (!mesh) return createPrimitive(shape);
     std::shared_ptr<OdeMeshData>& data = meshData_[mesh->data.get()];
@@ -191,7 +206,9 @@ class World::Builder {
       data = std::make_shared<OdeMeshData>(*mesh);
       world_.meshData_.push_back(data);
     }
-    return onBody ? data->createConvex() : data->createTriMesh();
+    if (!onBody) return data->createTriMesh();
+    shift = data->convexCentre();
+    return data->createConvex();
   }
 
   /// Creates the body of a group whose top link is at `topPose`; returns it and records it.

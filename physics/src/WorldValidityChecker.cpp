@@ -1,5 +1,6 @@
 #include "kautham/physics/WorldValidityChecker.h"
 
+#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -64,7 +65,20 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
 }
 
 bool WorldValidityChecker::isValid(const ompl::base::State* state) const {
-  return check(WorldStateSpace::values(state)) == Violation::None;
+  const Violation violation = check(WorldStateSpace::values(state));
+  if (violation == Violation::None) return true;
+  rejected_[static_cast<std::size_t>(violation)].fetch_add(1, std::memory_order_relaxed);
+  return false;
+}
+
+std::vector<std::pair<Violation, std::uint64_t>> WorldValidityChecker::rejections() const {
+  std::vector<std::pair<Violation, std::uint64_t>> counts;
+  for (std::size_t v = 1; v < kViolationKinds; ++v)
+    if (const std::uint64_t n = rejected_[v].load(std::memory_order_relaxed))
+      counts.emplace_back(static_cast<Violation>(v), n);
+  std::stable_sort(counts.begin(), counts.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  return counts;
 }
 
 Violation WorldValidityChecker::check(const double* state) const {

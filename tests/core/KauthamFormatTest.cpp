@@ -17,6 +17,7 @@
 #include "TestPaths.h"
 #include "kautham/core/ControlSet.h"
 #include "kautham/core/InputError.h"
+#include "kautham/core/Log.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/PlanRequest.h"
 
@@ -268,25 +269,28 @@ TEST_F(KauthamVariant, RotationalLimitsAreAcceptedAndIgnored) {
   EXPECT_EQ(problem.robot.baseAxes.size(), 2u);
 }
 
-TEST_F(KauthamVariant, LimitsZGivesAThirdBaseJointAndAnArmKeepsItsJointsAfterTheBase) {
+TEST_F(KauthamVariant, LimitsAreUnusedWhenTheControlSetNamesNoBaseDof) {
   std::string text = readText(repoFile(kKuka));
   text = replaceOnce(text, "  <Robot robot=\"robots/kuka_lwr4.urdf\" name=\"kuka\">\n",
                      "  <Robot robot=\"robots/kuka_lwr4.urdf\" name=\"kuka\">\n"
                      "    <Limits name=\"Z\" min=\"-0.1\" max=\"0.1\"/>\n"
                      "    <Limits name=\"X\" min=\"-0.2\" max=\"0.2\"/>\n");
-  // The arm's control set does not name the base joints: they are held at their offset (0.5).
+  // As in Kautham: the arm's control set names none of X, Y, Z, X1, X2, X3, so the base stays
+  // at <Home> and the limits are unused (with a warning), not joints held at their middle.
+  std::vector<std::string> warnings;
+  const WarningSink previous =
+      setWarningSink([&](const std::string& message) { warnings.push_back(message); });
   const Problem problem = load(text);
+  setWarningSink(previous);
   const std::vector<std::string> joints = jointNames(problem.robot.model);
-  ASSERT_EQ(joints.size(), 11u);
-  EXPECT_EQ(joints[0], "base_X");  // X before Z, whatever the file's order
-  EXPECT_EQ(joints[1], "base_Z");
-  EXPECT_EQ(joints[2], "kuka_joint_1");
-  EXPECT_FALSE(problem.robot.controls.moves(0));
-  EXPECT_TRUE(problem.robot.controls.moves(2));
+  ASSERT_EQ(joints.size(), 9u);
+  EXPECT_EQ(joints[0], "kuka_joint_1");
+  bool warned = false;
+  for (const std::string& w : warnings)
+    warned |= w.find("the <Limits> are unused") != std::string::npos;
+  EXPECT_TRUE(warned);
   const std::vector<double> values = problem.initialJointValues(problem.queries.at(0));
-  EXPECT_NEAR(values[0], 0.0, 1e-12);
-  EXPECT_NEAR(values[1], 0.0, 1e-12);
-  EXPECT_NEAR(values[3], 40.0 * M_PI / 180.0, 1e-3);  // A2 as before
+  EXPECT_NEAR(values[1], 40.0 * M_PI / 180.0, 1e-3);  // A2 as before
 }
 
 // ----- configuration goals: <Goal> and <RobotControl> -----

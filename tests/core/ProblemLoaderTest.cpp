@@ -484,8 +484,8 @@ const MalformedCase kMalformedCases[] = {
     {"mesh_flat", "mesh_flat.urdf", 6,
      "mesh 'meshes/flat.obj' has no volume, so it cannot be a collision body: the points are flat"},
     {"mesh_package", "mesh_package.urdf", 6,
-     "mesh 'package://kautham/meshes/table.stl': package:// paths need ROS to resolve; write the "
-     "path relative to the URDF's folder"},
+     "mesh 'package://kautham/meshes/table.stl': package 'kautham' not found (give "
+     "--package-path kautham=DIR"},
     {"fixed_with_joint", nullptr, 11, "object 'cabinet' has movable joints"},
     {"goal_unknown_link", nullptr, 25, "has no link 'hand'"},
     {"goal_unknown_object", nullptr, 25, "relativeTo names no object: 'cup'"},
@@ -526,7 +526,7 @@ const MalformedCase kMalformedCases[] = {
     {"init_dim_mismatch", nullptr, 24, "<Init> says dim=\"2\" but the robot has 3 controls"},
     {"limits_unknown_name", nullptr, 5,
      "unknown <Limits name=\"U\">; expected X, Y, Z (or WX, WY, WZ, TH, which are ignored)"},
-    {"limits_min_not_less_than_max", nullptr, 6, "<Limits> needs min < max"},
+    {"limits_min_not_less_than_max", nullptr, 6, "<Limits> needs min <= max"},
     {"goal_and_goal_region", nullptr, 26,
      "a query has one goal: a <Goal> configuration or a <GoalRegion>"},
     {"robot_control_other_robot", nullptr, 24,

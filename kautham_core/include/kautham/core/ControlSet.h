@@ -1,6 +1,7 @@
 #pragma once
 
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,8 +38,12 @@ struct ControlSet {
 };
 
 /// Reads a .cntr file for `model`. DOF names are the child link (or joint) name of a movable
-/// joint, optionally prefixed by "robot/" as Kautham writes them. Errors name the file and line.
+/// joint, optionally prefixed by "robot/" as Kautham writes them; Kautham's base DOFs X, Y, Z
+/// and X3 name the joints base_X, base_Y, base_Z and base_X3. Names in `ignored` (base DOFs
+/// without a joint: a pinned axis, a fixed rotation) are accepted and have no effect. Errors
+/// name the file and line.
 ControlSet loadControlSet(const std::filesystem::path& file, const KinematicModel& model,
-                          const SourceLocation& requestedAt);
+                          const SourceLocation& requestedAt,
+                          const std::set<std::string>& ignored = {});
 
 }  // namespace kautham::core

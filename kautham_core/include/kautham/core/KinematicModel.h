@@ -37,6 +37,15 @@ struct Joint {
   double upper = 0.0;
   double maxVelocity = 0.0;
   double maxEffort = 0.0;
+  /// URDF <mimic>: this joint follows `joint` as value = multiplier * leader + offset. The
+  /// loader couples it to its leader's controls (ControlSet), so it is no degree of freedom of
+  /// its own for the planner.
+  struct Mimic {
+    std::string joint;
+    double multiplier = 1.0;
+    double offset = 0.0;
+  };
+  std::optional<Mimic> mimic;
 
   bool isMovable() const { return type != JointType::Fixed; }
 };

@@ -21,9 +21,11 @@ class MeshError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Reads a mesh file with Assimp (STL, OBJ, DAE and the other formats it knows): faces are
-/// triangulated, identical vertices joined, node transforms applied, and every coordinate
-/// multiplied by `scale` per axis. Throws MeshError naming what is wrong.
+/// Reads a mesh file with Assimp (STL, OBJ, DAE and the other formats it knows), or with Coin3D
+/// for Open Inventor `.iv` and VRML `.wrl` files: faces are triangulated, identical vertices
+/// joined, node transforms applied, and every coordinate multiplied by `scale` per axis. A scale
+/// with an odd number of negative factors mirrors the mesh (its triangles are turned so they
+/// stay counter-clockwise from outside). Throws MeshError naming what is wrong.
 TriangleMesh loadMesh(const std::filesystem::path& file,
                       const Eigen::Vector3d& scale = Eigen::Vector3d::Ones());
 

@@ -154,6 +154,9 @@ struct Query {
   /// Normalized initial controls in [0,1] (Kautham's <Init>, one per control); empty: every
   /// joint at 0, clamped into its limits.
   std::vector<double> init;
+  /// <Init><Joint name value/>...</Init>: the start given joint by joint (radians, metres), in
+  /// the order of movableJoints(); when set it replaces `init`.
+  std::vector<double> initJoints;
   GoalRegion goal;
   SourceLocation where;
 };
@@ -167,6 +170,7 @@ struct PlannerParameter {
 
 struct PlannerSpec {
   std::string name;
+  SourceLocation nameWhere;  ///< the <Name> element
   std::vector<PlannerParameter> parameters;
   SourceLocation where;
 };
@@ -186,6 +190,10 @@ struct Problem {
   InteractionConstraints interaction;
   KinodynamicLimits kinodynamics;
   Eigen::AlignedBox3d workspace;  ///< where the robot's goal link may go
+  /// Kautham's ODE environment has an implicit ground: a plane z = height that objects rest on
+  /// and the robot passes through. Set for files in Kautham's own form (no roles) planned with
+  /// physics; empty for this project's scenes, which stand on a table.
+  std::optional<double> groundHeight;
   PlannerSpec planner;
   std::vector<Query> queries;
 

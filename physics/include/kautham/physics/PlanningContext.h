@@ -42,6 +42,8 @@ class PlanningContext {
   const PhysicsPropagator& propagator() const { return *propagator_; }
   /// The full validity checker: replays and validation always judge with every constraint.
   const WorldValidityChecker& validityChecker() const { return *validity_; }
+  /// States the planner's validity checks rejected, by reason (both rule sets), most first.
+  std::vector<std::pair<Violation, std::uint64_t>> rejections() const;
   /// Which rules the planner's space information checks states with (o-KPIECE plans with
   /// the knowledge rules only); Full until changed.
   void usePlanningRules(ValidityRules rules);

@@ -1,7 +1,11 @@
 #pragma once
 
+#include <array>
+#include <atomic>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <ompl/base/StateValidityChecker.h>
@@ -27,6 +31,7 @@ enum class Violation {
   ObjectOffSupport,    ///< a movable object left the table (or fell)
 };
 const char* toString(Violation violation);
+constexpr std::size_t kViolationKinds = static_cast<std::size_t>(Violation::ObjectOffSupport) + 1;
 
 /// Which constraints a checker applies.
 enum class ValidityRules {
@@ -53,6 +58,9 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// Where the target stands at the start of the query.
   const Eigen::Vector3d& targetStart() const { return targetStart_; }
   std::optional<std::size_t> targetBody() const { return targetBody_; }
+  /// How many states isValid() (the planner's calls) rejected, by reason, most frequent first:
+  /// why a tree that never grows stays where it is.
+  std::vector<std::pair<Violation, std::uint64_t>> rejections() const;
 
  private:
   Violation checkObject(const double* state, std::size_t body) const;
@@ -71,6 +79,7 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   std::vector<double> startHeights_;       ///< per body: height of its centre at the start
   std::optional<std::size_t> targetBody_;  ///< none in Kautham files without roles
   Eigen::Vector3d targetStart_;
+  mutable std::array<std::atomic<std::uint64_t>, kViolationKinds> rejected_{};
 };
 
 }  // namespace kautham::physics

@@ -1,0 +1,72 @@
+#include "KauthamPlanners.h"
+
+#include "kautham/core/InputError.h"
+#include "kautham/core/Log.h"
+#include "kautham/planners/PlannerRegistry.h"
+
+namespace kautham::apps {
+
+namespace {
+
+bool startsWith(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0;
+}
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+KauthamPlanner mapped(const std::string& name, const std::string& ours, const std::string& what) {
+  return {KauthamPlanner::Kind::Mapped, ours,
+          "planner '" + name + "' is Kautham's " + what + "; planned here with '" + ours + "'"};
+}
+
+}  // namespace
+
+KauthamPlanner classifyPlanner(const std::string& name) {
+  if (planners::plannerRegistry().find(name)) return {KauthamPlanner::Kind::Ours, name, ""};
+  // Kautham's ODE planners (physics-based): omplODE..., ...KPIECE2DPlanner, ...ChainPlanner.
+  if (contains(name, "KnowledgeOriented"))
+    return mapped(name, "o-KPIECE", "knowledge-oriented KPIECE over ODE");
+  const bool physics = startsWith(name, "omplODE") || contains(name, "2DPlanner") ||
+                       contains(name, "ChainPlanner") || contains(name, "CarPlanner");
+  const bool control = startsWith(name, "omplc");
+  if (physics || control) {
+    const std::string what = physics ? "physics-based " : "control-based ";
+    if (contains(name, "KPIECE")) return mapped(name, "KPIECE", what + "KPIECE");
+    if (contains(name, "SST")) return mapped(name, "SST", what + "SST");
+    if (contains(name, "PDST")) return mapped(name, "PDST", what + "PDST");
+    if (contains(name, "EST")) return mapped(name, "EST", what + "EST");
+    if (contains(name, "RRT")) return mapped(name, "RRT", what + "RRT");
+  }
+  if (startsWith(name, "ompl"))
+    return {KauthamPlanner::Kind::Geometric, "KPIECE",
+            "planner '" + name +
+                "' is one of Kautham's geometric OMPL planners, which this "
+                "program does not have yet (they come with the task-and-motion-planning baseline); "
+                "plan with a physics-based planner instead, e.g. --planner KPIECE (or RRT, EST; "
+                "`kautham planners` lists them)"};
+  return {KauthamPlanner::Kind::Unknown, "", ""};
+}
+
+std::optional<std::string> plannerToUse(const core::Problem& problem,
+                                        const std::optional<std::string>& override, bool lenient) {
+  if (override) return override;
+  const KauthamPlanner kind = classifyPlanner(problem.planner.name);
+  switch (kind.kind) {
+    case KauthamPlanner::Kind::Ours:
+    case KauthamPlanner::Kind::Unknown:  // the registry's message lists the known names
+      return std::nullopt;
+    case KauthamPlanner::Kind::Mapped:
+      core::warning(problem.planner.nameWhere.str() + ": " + kind.note);
+      return kind.planner;
+    case KauthamPlanner::Kind::Geometric:
+      if (!lenient) throw core::InputError(problem.planner.nameWhere, kind.note);
+      core::warning(problem.planner.nameWhere.str() + ": " + kind.note + "; checked with '" +
+                    kind.planner + "'");
+      return kind.planner;
+  }
+  return std::nullopt;
+}
+
+}  // namespace kautham::apps

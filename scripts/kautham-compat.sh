@@ -1,0 +1,83 @@
+#!/usr/bin/env bash
+# Which Kautham problem files of a folder this program loads and plans (issue 14).
+#
+#   scripts/kautham-compat.sh DIR [--time S] [-o TABLE.md]
+#
+# For every XML file under DIR (its models/ folder excepted) whose root is <Problem>, runs
+# `kautham check` and, where a planner of ours fits (Kautham's geometric OMPL planners have none
+# yet), `kautham plan --time S` (default 10 s, seed 1). Writes a Markdown table: each problem,
+# its planner, whether it loads and plans, and the first message of a failure (or the first
+# warning). Other XML files (benchmark definitions, synergy trees) are listed as not problems.
+# Extra options for both commands: KAUTHAM_ARGS="--package-path NAME=DIR ...".
+# The exit code is 0 when every problem loads, 1 otherwise.
+set -uo pipefail
+
+usage() { sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+[ $# -ge 1 ] || usage
+dir=$1; shift
+time_limit=10
+output=""
+while [ $# -gt 0 ]; do
+  case $1 in
+    --time) time_limit=$2; shift 2 ;;
+    -o) output=$2; shift 2 ;;
+    *) usage ;;
+  esac
+done
+[ -d "$dir" ] || { echo "kautham-compat: '$dir' is not a folder" >&2; exit 2; }
+root=$(cd "$(dirname "$0")/.." && pwd)
+kautham=${KAUTHAM:-$root/build/apps/kautham}
+[ -x "$kautham" ] || { echo "kautham-compat: $kautham not built (run ./scripts/build.sh)" >&2; exit 2; }
+read -r -a extra <<< "${KAUTHAM_ARGS:-}"
+dir=$(cd "$dir" && pwd)
+
+# One line of a message for a table cell: no pipes, no line breaks, the folder shortened.
+cell() { head -c 400 | tr '\n|' ' /' | sed "s#$dir/##g; s#  *# #g; s# *\$##"; }
+
+rows=()
+problems=0; loaded=0; planned=0; solved=0; others=0
+while IFS= read -r file; do
+  rel=${file#"$dir"/}
+  rootTag=$(grep -v '^\s*<?xml' "$file" | grep -v '^\s*<!--' | grep -o -m1 '<[A-Za-z][A-Za-z]*' | tr -d '<')
+  if [ "$rootTag" != "Problem" ]; then
+    others=$((others + 1))
+    rows+=("| $rel | | not a problem file (root <$rootTag>) | | |")
+    continue
+  fi
+  problems=$((problems + 1))
+  planner=$(grep -v '^\s*<!--' "$file" | grep -o -m1 '<Name>[^<]*</Name>' | sed 's#</\?Name>##g')
+  check_out=$(cd "$(dirname "$file")" && timeout 120 "$kautham" check "$(basename "$file")" "${extra[@]}" 2>&1)
+  check_rc=$?
+  if [ $check_rc -ne 0 ]; then
+    message=$(printf '%s\n' "$check_out" | grep -m1 '^error' | cell)
+    rows+=("| $rel | $planner | **fails** (exit $check_rc) | | $message |")
+    continue
+  fi
+  loaded=$((loaded + 1))
+  first_warning=$(printf '%s\n' "$check_out" | grep -m1 '^warning' | sed 's/^warning: //' | cell)
+  if printf '%s\n' "$check_out" | grep -q "geometric OMPL planners"; then
+    rows+=("| $rel | $planner | loads | not run: needs a geometric planner (not available yet; \`--planner KPIECE\` plans it with physics) | $first_warning |")
+    continue
+  fi
+  planned=$((planned + 1))
+  start=$(date +%s.%N)
+  plan_out=$(cd "$(dirname "$file")" && timeout $((time_limit * 3 + 60)) "$kautham" plan "$(basename "$file")" --time "$time_limit" --seed 1 "${extra[@]}" 2>&1)
+  plan_rc=$?
+  seconds=$(printf '%.1f' "$(echo "$(date +%s.%N) - $start" | bc)")
+  case $plan_rc in
+    0) solved=$((solved + 1)); result="solved ($(printf '%s\n' "$plan_out" | grep -m1 '^solved' | sed 's/^solved *yes in //'))" ;;
+    1) result="not solved in $time_limit s ($(printf '%s\n' "$plan_out" | grep -m1 '^replay' | sed 's/^replay *//' | cell))" ;;
+    *) result="**error** (exit $plan_rc): $(printf '%s\n' "$plan_out" | grep -m1 '^error' | cell)" ;;
+  esac
+  rows+=("| $rel | $planner | loads | $result | $first_warning |")
+done < <(find "$dir" -name '*.xml' -not -path '*/models/*' | sort)
+
+{
+  echo "| problem | planner in the file | \`kautham check\` | \`kautham plan --time $time_limit --seed 1\` | first message |"
+  echo "| --- | --- | --- | --- | --- |"
+  printf '%s\n' "${rows[@]}"
+  echo
+  echo "$problems problem files: $loaded load, $planned planned, $solved solved; $others other XML files."
+} > "${output:-/dev/stdout}"
+[ -n "$output" ] && echo "kautham-compat: wrote $output ($problems problems, $loaded load, $solved solved)" >&2
+[ "$loaded" -eq "$problems" ]

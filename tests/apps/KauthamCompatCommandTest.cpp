@@ -1,0 +1,128 @@
+// Kautham's files through the `kautham` program (issue 14): planner names, `check --planner`,
+// `--package-path`, warnings on stderr only, and the UR5 problem when its description package
+// (test data outside the project, ../shared/robots) is there.
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "TestPaths.h"
+#include "apps/CommandTestSupport.h"
+
+namespace kautham::apps {
+namespace {
+
+namespace fs = std::filesystem;
+using test::CommandRun;
+using test::kautham;
+
+const std::string kMobileBase = "tests/data/kautham_compat/mobile_base.xml";
+
+using StartSceneTest = test::TemporaryFolderTest;
+
+/// `kautham view PROBLEM.xml -o page`, then the page's self-test in headless Chromium; returns
+/// the verdict (the page's title).
+std::string startSceneVerdict(const fs::path& folder, const std::string& problem) {
+  const fs::path page = folder / "start.html";
+  const CommandRun view = kautham("view " + problem + " -o '" + page.string() + "'");
+  EXPECT_EQ(view.exitCode, 0) << view.output;
+  EXPECT_NE(view.output.find("start     "), std::string::npos) << view.output;
+  const CommandRun dom = test::run(
+      "timeout 120 chromium --headless --no-sandbox --disable-gpu --use-angle=swiftshader "
+      "--enable-unsafe-swiftshader --disable-quic --no-first-run --disable-background-networking "
+      "--disable-component-update --disable-sync --user-data-dir='" +
+      (folder / "profile").string() +
+      "' --virtual-time-budget=5000 --window-size=1200,800 --dump-dom 'file://" +
+      fs::absolute(page).string() + "#selftest' 2>/dev/null");
+  std::smatch title;
+  if (!std::regex_search(dom.output, title, std::regex("<title>([^<]*)</title>")))
+    return "no title: " + dom.output.substr(0, 500);
+  return title[1];
+}
+
+TEST_F(StartSceneTest, ViewOfAProblemFileShowsItsStartInThePlanPage) {
+  const std::string verdict = startSceneVerdict(folder, "tests/data/kautham_compat/mimic_arm.xml");
+  // the arm's 3 links and 2 objects; its 3 STL meshes drawn with all their triangles
+  EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=", 0), 0u) << verdict;
+  EXPECT_NE(verdict.find(" meshes=4 "), std::string::npos) << verdict;
+  const std::string page = test::readFile(folder / "start.html");
+  EXPECT_NE(page.find("\"start_scene\""), std::string::npos);
+}
+
+TEST(KauthamPlannerNames, CheckAcceptsAGeometricKauthamPlannerAndSaysWhichPlannerToUse) {
+  const CommandRun run = kautham("check " + kMobileBase);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("warning: " + kMobileBase +
+                            ":24: planner 'omplRRTConnect' is one of Kautham's geometric OMPL "
+                            "planners"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("e.g. --planner KPIECE"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("\nok\n"), std::string::npos) << run.output;
+}
+
+TEST(KauthamPlannerNames, PlanRejectsItNamingTheLineAndThePlannerToUse) {
+  const CommandRun run = kautham("plan " + kMobileBase + " --time 1");
+  EXPECT_EQ(run.exitCode, 2) << run.output;
+  EXPECT_NE(run.output.find("mobile_base.xml:24: planner 'omplRRTConnect'"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("--planner KPIECE"), std::string::npos) << run.output;
+}
+
+TEST(KauthamPlannerNames, CheckTakesPlannerAndNoWarningIsPrintedOnStdout) {
+  const CommandRun run =
+      test::run("cd '" + std::string(KAUTHAM_SOURCE_DIR) + "' && '" + KAUTHAM_BINARY + "' check " +
+                kMobileBase + " --planner RRT 2>/dev/null");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("planner     RRT"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("warning"), std::string::npos) << run.output;
+  // check prints where the goal link starts
+  EXPECT_NE(run.output.find("start       query0: body at (0.000, 0.500, 0.030)"), std::string::npos)
+      << run.output;
+}
+
+TEST(CheckWarnings, RobotLinksWithoutInertialAreNamed) {
+  const CommandRun run = kautham("check tests/data/kautham_compat/massless_arm.xml");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("massless_arm.urdf: robot links without <inertial> (their bodies get "
+                            "0.1 kg, which sets how hard they push): paddle"),
+            std::string::npos)
+      << run.output;
+}
+
+TEST(PackagePathOption, IsReadAsNameEqualsDirAndCheckedEarly) {
+  const CommandRun run = kautham(
+      "check tests/data/kautham_compat/mimic_arm.xml --package-path "
+      "shared_meshes=tests/data/kautham_compat/ros/shared_meshes");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const CommandRun bad = kautham("check tests/data/kautham_compat/mimic_arm.xml --package-path x");
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("--package-path takes NAME=DIR"), std::string::npos) << bad.output;
+}
+
+// The UR5 as its authors ship it (package:// paths, DAE visual meshes): problems/ur5_cans.xml.
+TEST(Ur5Description, TheUr5ProblemLoadsAndPlansWhenItsPackageIsThere) {
+  if (!fs::is_directory(test::repoFile("../shared/robots/ur_description")))
+    GTEST_SKIP() << "the UR5 description (test data outside the project) is not at "
+                 << test::repoFile("../shared/robots/ur_description");
+  const CommandRun check = kautham("check problems/ur5_cans.xml");
+  ASSERT_EQ(check.exitCode, 0) << check.output;
+  EXPECT_EQ(check.output.find("Polygon"), std::string::npos) << check.output;
+  const CommandRun plan = kautham("plan problems/ur5_cans.xml --seed 1 --time 30");
+  EXPECT_EQ(plan.exitCode, 0) << plan.output;
+  EXPECT_NE(plan.output.find("reaches the goal"), std::string::npos) << plan.output;
+}
+
+TEST_F(StartSceneTest, TheUr5ProblemsStartSceneShowsInABrowser) {
+  if (!fs::is_directory(test::repoFile("../shared/robots/ur_description")))
+    GTEST_SKIP() << "the UR5 description (test data outside the project) is not at "
+                 << test::repoFile("../shared/robots/ur_description");
+  const std::string verdict = startSceneVerdict(folder, "problems/ur5_cans.xml");
+  EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=10 shapes=12 meshes=7 moved=none", 0), 0u)
+      << verdict;
+}
+
+}  // namespace
+}  // namespace kautham::apps
