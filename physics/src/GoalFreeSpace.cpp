@@ -53,21 +53,69 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
                                        k / double(count.z() - 1));
         grid_.push_back(center + (fraction.array() - 0.5).matrix().cwiseProduct(size));
       }
-  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
-    if (layout_->bodies[b].role == BodyRole::Movable) movable_.push_back(b);
-  for (const ShapeInfo& shape : layout_->shapes)
-    shapeRadius_.push_back(boundingRadius(shape.shape));
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
+    if (layout_->bodies[b].role != BodyRole::Movable) continue;
+    MovableBody movable{b, {}, 0.0};
+    for (std::size_t s = 0; s < layout_->shapes.size(); ++s) {
+      const ShapeInfo& shape = layout_->shapes[s];
+      if (shape.body != static_cast<int>(b)) continue;
+      movable.shapes.push_back(s);
+      movable.reach =
+          std::max(movable.reach, shape.pose.translation().norm() + boundingRadius(shape.shape));
+    }
+    movable_.push_back(std::move(movable));
+  }
+}
+
+std::vector<std::size_t> GoalFreeSpace::pointsInside(const double* state,
+                                                     const Eigen::Isometry3d& goalLink,
+                                                     std::size_t& anyInside) const {
+  const Eigen::Vector3d boxCentre = goalLink * center_;
+  // The shapes of the bodies near the box, each with the map from world to its own frame:
+  // most objects are nowhere near the gripper and are skipped whole.
+  struct NearShape {
+    const core::Shape* shape;
+    std::size_t entry;  ///< in movable_
+    Eigen::Isometry3d toShape;
+  };
+  std::vector<NearShape> near;
+  for (std::size_t e = 0; e < movable_.size(); ++e) {
+    const MovableBody& m = movable_[e];
+    const Eigen::Vector3d position = WorldLayout::position(state, m.body);
+    if ((position - boxCentre).norm() > m.reach + boundingRadius_) continue;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = WorldLayout::orientation(state, m.body).normalized().toRotationMatrix();
+    pose.translation() = position;
+    for (std::size_t s : m.shapes)
+      near.push_back({&layout_->shapes[s].shape, e, (pose * layout_->shapes[s].pose).inverse()});
+  }
+  std::vector<std::size_t> counts(movable_.size(), 0);
+  anyInside = 0;
+  if (near.empty()) return counts;
+  std::vector<char> hit(movable_.size());
+  for (const Eigen::Vector3d& p : grid_) {
+    const Eigen::Vector3d world = goalLink * p;
+    std::fill(hit.begin(), hit.end(), 0);
+    for (const NearShape& n : near)
+      if (!hit[n.entry] && inside(*n.shape, n.toShape * world)) hit[n.entry] = 1;
+    bool any = false;
+    for (std::size_t e = 0; e < hit.size(); ++e)
+      if (hit[e]) {
+        ++counts[e];
+        any = true;
+      }
+    anyInside += any;
+  }
+  return counts;
 }
 
 std::vector<std::string> GoalFreeSpace::occupants(const double* state,
                                                   const Eigen::Isometry3d& goalLink) const {
-  std::vector<Eigen::Vector3d> worldPoints;
-  worldPoints.reserve(grid_.size());
-  for (const Eigen::Vector3d& p : grid_) worldPoints.push_back(goalLink * p);
+  std::size_t anyInside = 0;
+  const std::vector<std::size_t> counts = pointsInside(state, goalLink, anyInside);
   std::vector<std::string> names;
-  for (std::size_t body : movable_)
-    if (occupies(body, state, worldPoints, goalLink * center_))
-      names.push_back(layout_->bodies[body].name);
+  for (std::size_t e = 0; e < movable_.size(); ++e)
+    if (counts[e] > 0) names.push_back(layout_->bodies[movable_[e].body].name);
   return names;
 }
 
@@ -77,72 +125,14 @@ bool GoalFreeSpace::isFree(const double* state, const Eigen::Isometry3d& goalLin
 
 GoalFreeSpace::Occupancy GoalFreeSpace::occupancy(const double* state,
                                                   const Eigen::Isometry3d& goalLink) const {
-  const Eigen::Vector3d boxCentre = goalLink * center_;
-  // The shapes near the box, each with its body and the map from world to its own frame.
-  struct NearShape {
-    const core::Shape* shape;
-    std::size_t body;
-    Eigen::Isometry3d toShape;
-  };
-  std::vector<NearShape> near;
-  for (std::size_t body : movable_) {
-    const std::optional<Eigen::Isometry3d> pose = poseIfNear(body, state, boxCentre);
-    if (!pose) continue;
-    for (std::size_t s = 0; s < layout_->shapes.size(); ++s)
-      if (layout_->shapes[s].body == static_cast<int>(body))
-        near.push_back(
-            {&layout_->shapes[s].shape, body, (*pose * layout_->shapes[s].pose).inverse()});
-  }
+  std::size_t anyInside = 0;
+  const std::vector<std::size_t> counts = pointsInside(state, goalLink, anyInside);
   Occupancy result;
-  if (near.empty()) return result;
-  std::vector<std::size_t> pointsOf(layout_->bodies.size(), 0);
-  std::size_t occupied = 0;
-  for (const Eigen::Vector3d& p : grid_) {
-    const Eigen::Vector3d world = goalLink * p;
-    for (const NearShape& n : near)
-      if (inside(*n.shape, n.toShape * world)) {
-        ++occupied;
-        ++pointsOf[n.body];
-        break;
-      }
-  }
-  result.fraction = static_cast<double>(occupied) / static_cast<double>(grid_.size());
-  const auto most = std::max_element(pointsOf.begin(), pointsOf.end());
-  if (*most > 0) result.largest = static_cast<std::size_t>(most - pointsOf.begin());
+  result.fraction = static_cast<double>(anyInside) / static_cast<double>(grid_.size());
+  const auto most = std::max_element(counts.begin(), counts.end());
+  if (most != counts.end() && *most > 0)
+    result.largest = movable_[static_cast<std::size_t>(most - counts.begin())].body;
   return result;
-}
-
-std::optional<Eigen::Isometry3d> GoalFreeSpace::poseIfNear(std::size_t body, const double* state,
-                                                           const Eigen::Vector3d& boxCentre) const {
-  const Eigen::Vector3d position = WorldLayout::position(state, body);
-  double reach = 0.0;
-  for (std::size_t s = 0; s < layout_->shapes.size(); ++s)
-    if (layout_->shapes[s].body == static_cast<int>(body))
-      reach = std::max(reach, layout_->shapes[s].pose.translation().norm() + shapeRadius_[s]);
-  if ((position - boxCentre).norm() > reach + boundingRadius_) return std::nullopt;
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.linear() = WorldLayout::orientation(state, body).normalized().toRotationMatrix();
-  pose.translation() = position;
-  return pose;
-}
-
-bool GoalFreeSpace::occupies(std::size_t body, const double* state,
-                             const std::vector<Eigen::Vector3d>& worldPoints,
-                             const Eigen::Vector3d& boxCentre) const {
-  Eigen::Isometry3d bodyPose = Eigen::Isometry3d::Identity();
-  bodyPose.linear() = WorldLayout::orientation(state, body).normalized().toRotationMatrix();
-  bodyPose.translation() = WorldLayout::position(state, body);
-  for (std::size_t s = 0; s < layout_->shapes.size(); ++s) {
-    const ShapeInfo& shape = layout_->shapes[s];
-    if (shape.body != static_cast<int>(body)) continue;
-    const Eigen::Isometry3d toShape = (bodyPose * shape.pose).inverse();
-    // Far shapes are skipped whole: most objects are nowhere near the gripper.
-    const double reach = shapeRadius_[s] + boundingRadius_;
-    if ((toShape * boxCentre).norm() > reach) continue;
-    for (const Eigen::Vector3d& p : worldPoints)
-      if (inside(shape.shape, toShape * p)) return true;
-  }
-  return false;
 }
 
 }  // namespace kautham::physics

@@ -37,19 +37,23 @@ class GoalFreeSpace {
   Occupancy occupancy(const double* state, const Eigen::Isometry3d& goalLink) const;
 
  private:
-  /// The body's pose in the state, if any of its shapes can reach the box.
-  std::optional<Eigen::Isometry3d> poseIfNear(std::size_t body, const double* state,
-                                              const Eigen::Vector3d& boxCentre) const;
-  bool occupies(std::size_t body, const double* state,
-                const std::vector<Eigen::Vector3d>& worldPoints,
-                const Eigen::Vector3d& boxCentre) const;
+  /// A movable body's shapes (indices into the layout's) and the radius of a ball about the
+  /// body's origin that holds them all: fixed by the layout, so worked out once.
+  struct MovableBody {
+    std::size_t body;
+    std::vector<std::size_t> shapes;
+    double reach;
+  };
+  /// Per entry of movable_: how many grid points lie inside that body; `anyInside` gets how
+  /// many lie inside some body. One pass serves occupants() and occupancy().
+  std::vector<std::size_t> pointsInside(const double* state, const Eigen::Isometry3d& goalLink,
+                                        std::size_t& anyInside) const;
 
   std::shared_ptr<const WorldLayout> layout_;
   Eigen::Vector3d center_;
   double boundingRadius_;              ///< of the box, about its centre
   std::vector<Eigen::Vector3d> grid_;  ///< in the goal link's frame
-  std::vector<std::size_t> movable_;   ///< bodies that may not be in the box
-  std::vector<double> shapeRadius_;    ///< per layout shape: its bounding ball about its origin
+  std::vector<MovableBody> movable_;   ///< bodies that may not be in the box
 };
 
 }  // namespace kautham::physics
