@@ -261,7 +261,7 @@ void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
   candidate.judged = true;
   if (!withParticles()) {
     // Without uncertainty the nominal run is the only particle (the paper's pKP column).
-    if (candidate.run.reachedGoal) settleNominalInGoal(candidate);
+    if (candidate.run.reachedGoal) settleInGoal(candidate);
     candidate.verdict = evaluator_.judgeNominal(start, candidate.run.end.data());
     return;
   }
@@ -290,16 +290,18 @@ std::size_t PKpiece::recordIndex(const Candidate& candidate, unsigned step) {
 }
 
 void PKpiece::settleInGoal(Candidate& candidate) const {
-  // The nominal run went on while it stayed in the goal; it ends at the step where most
-  // particles are inside too, and of equals where the nominal run is nearest the goal point,
-  // rather than where it entered: the region's border, which a particle misses as often as
-  // it hits.
+  // The nominal run went on while it stayed in the goal; where it entered is the region's
+  // border, which a particle (or an execution with control noise) misses as often as it hits.
+  // It ends at the step where most particles are inside too, and of equals (always, without
+  // particles) where the nominal run is nearest the goal point.
+  const bool particles = withParticles();
   NominalRun& run = candidate.run;
   unsigned bestStep = run.goalFrom;
   unsigned bestCount = 0;
   double bestDistance = std::numeric_limits<double>::infinity();
   for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
-    const unsigned count = candidate.verdict.inGoalAt(recordIndex(candidate, step));
+    const unsigned count =
+        particles ? candidate.verdict.inGoalAt(recordIndex(candidate, step)) : 0u;
     const double distance = context_.goal().distance(run.states[step - 1].data());
     if (count > bestCount || (count == bestCount && distance < bestDistance)) {
       bestCount = count;
@@ -307,32 +309,12 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
       bestStep = step;
     }
   }
-  candidate.verdict = candidate.verdict.cutAt(recordIndex(candidate, bestStep));
+  if (particles) candidate.verdict = candidate.verdict.cutAt(recordIndex(candidate, bestStep));
   run.states.resize(bestStep);
   run.end = run.states.back();
   run.steps = bestStep;
   candidate.pieceEnds = pieceEnds(run);
-}
-
-void PKpiece::settleNominalInGoal(Candidate& candidate) const {
-  // The run went on while it stayed in the goal; where it entered is the region's edge, which
-  // control noise in an execution misses half the time. It ends where it is nearest the goal
-  // point instead (the earliest of equals).
-  NominalRun& run = candidate.run;
-  unsigned bestStep = run.goalFrom;
-  double best = std::numeric_limits<double>::infinity();
-  for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
-    const double d = context_.goal().distance(run.states[step - 1].data());
-    if (d < best) {
-      best = d;
-      bestStep = step;
-    }
-  }
-  run.states.resize(bestStep);
-  run.end = run.states.back();
-  run.steps = bestStep;
-  candidate.pieceEnds = pieceEnds(run);
-  candidate.recordAfter = candidate.pieceEnds;
+  if (!particles) candidate.recordAfter = candidate.pieceEnds;
 }
 
 double PKpiece::solutionConfidence(const Candidate& c) const {

@@ -69,10 +69,9 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   bool withParticles() const;
   /// Where the particles' states after `step` steps are in their recorded states.
   static std::size_t recordIndex(const Candidate& candidate, unsigned step);
-  /// Ends a goal-reaching candidate at the step where most of its particles are in the goal.
+  /// Ends a goal-reaching candidate at the step where most of its particles are in the goal,
+  /// of equals (always, without particles) where its nominal run is nearest the goal point.
   void settleInGoal(Candidate& candidate) const;
-  /// Without particles: ends a run through the goal where it comes nearest the goal point.
-  void settleNominalInGoal(Candidate& candidate) const;
   /// The belief cells and motion choice use: the path's or the motion's own (pathBelief).
   double selectionBelief(const Motion& motion) const;
   Grid::Coord cellOf(const std::vector<double>& state) const;
