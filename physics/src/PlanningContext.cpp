@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-
 #include <cmath>
 #include <stdexcept>
 
@@ -102,9 +101,10 @@ EndEffectorProjection& PlanningContext::projection() {
 std::vector<std::pair<Violation, std::uint64_t>> PlanningContext::rejections() const {
   std::array<std::uint64_t, kViolationKinds> total{};
   for (const auto& checker : {validity_, knowledgeValidity_})
-    if (checker)
-      for (const auto& [violation, count] : checker->rejections())
-        total[static_cast<std::size_t>(violation)] += count;
+    if (checker) {
+      const auto counts = checker->rejectionCounts();
+      for (std::size_t v = 0; v < kViolationKinds; ++v) total[v] += counts[v];
+    }
   std::vector<std::pair<Violation, std::uint64_t>> counts;
   for (std::size_t v = 1; v < kViolationKinds; ++v)
     if (total[v]) counts.emplace_back(static_cast<Violation>(v), total[v]);

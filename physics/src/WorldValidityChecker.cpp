@@ -1,6 +1,5 @@
 #include "kautham/physics/WorldValidityChecker.h"
 
-#include <algorithm>
 #include <cmath>
 #include <variant>
 
@@ -71,13 +70,10 @@ bool WorldValidityChecker::isValid(const ompl::base::State* state) const {
   return false;
 }
 
-std::vector<std::pair<Violation, std::uint64_t>> WorldValidityChecker::rejections() const {
-  std::vector<std::pair<Violation, std::uint64_t>> counts;
-  for (std::size_t v = 1; v < kViolationKinds; ++v)
-    if (const std::uint64_t n = rejected_[v].load(std::memory_order_relaxed))
-      counts.emplace_back(static_cast<Violation>(v), n);
-  std::stable_sort(counts.begin(), counts.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
+std::array<std::uint64_t, kViolationKinds> WorldValidityChecker::rejectionCounts() const {
+  std::array<std::uint64_t, kViolationKinds> counts{};
+  for (std::size_t v = 0; v < kViolationKinds; ++v)
+    counts[v] = rejected_[v].load(std::memory_order_relaxed);
   return counts;
 }
 

@@ -5,7 +5,6 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include <ompl/base/StateValidityChecker.h>
@@ -58,9 +57,9 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// Where the target stands at the start of the query.
   const Eigen::Vector3d& targetStart() const { return targetStart_; }
   std::optional<std::size_t> targetBody() const { return targetBody_; }
-  /// How many states isValid() (the planner's calls) rejected, by reason, most frequent first:
-  /// why a tree that never grows stays where it is.
-  std::vector<std::pair<Violation, std::uint64_t>> rejections() const;
+  /// How many states isValid() (the planner's calls) rejected, indexed by Violation: why a
+  /// tree that never grows stays where it is (PlanningContext::rejections sums and sorts them).
+  std::array<std::uint64_t, kViolationKinds> rejectionCounts() const;
 
  private:
   Violation checkObject(const double* state, std::size_t body) const;
