@@ -99,11 +99,20 @@ std::string lowercase(std::string text) {
   return text;
 }
 
-double parseValue(const ParameterSpec& spec, const std::string& text) {
+}  // namespace
+
+std::optional<bool> flagWord(const std::string& text) {
   const std::string word = lowercase(text);
+  if (word == "true" || word == "1" || word == "yes" || word == "on") return true;
+  if (word == "false" || word == "0" || word == "no" || word == "off") return false;
+  return std::nullopt;
+}
+
+namespace {
+
+double parseValue(const ParameterSpec& spec, const std::string& text) {
   if (spec.type == ParameterType::Boolean) {
-    if (word == "true" || word == "1" || word == "yes" || word == "on") return 1.0;
-    if (word == "false" || word == "0" || word == "no" || word == "off") return 0.0;
+    if (const std::optional<bool> flag = flagWord(text)) return *flag ? 1.0 : 0.0;
     throw std::invalid_argument("parameter '" + spec.name + "' expects true or false, got '" +
                                 text + "'");
   }

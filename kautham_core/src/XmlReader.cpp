@@ -5,6 +5,8 @@
 #include <cstring>
 #include <sstream>
 
+#include "kautham/core/Parameter.h"
+
 namespace kautham::core {
 
 XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
@@ -117,8 +119,7 @@ bool XmlReader::flag(const tinyxml2::XMLElement& element, const char* attribute,
                      bool fallback) const {
   const auto text = optionalText(element, attribute);
   if (!text) return fallback;
-  if (*text == "true" || *text == "1") return true;
-  if (*text == "false" || *text == "0") return false;
+  if (const std::optional<bool> flag = flagWord(*text)) return *flag;
   fail(element,
        std::string("attribute ") + attribute + " must be true or false, got '" + *text + "'");
 }

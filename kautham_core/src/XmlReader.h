@@ -43,7 +43,7 @@ class XmlReader {
   double number(const tinyxml2::XMLElement& element, const char* attribute, double fallback) const;
   double requiredNumber(const tinyxml2::XMLElement& element, const char* attribute) const;
   int integer(const tinyxml2::XMLElement& element, const char* attribute, int fallback) const;
-  /// "true" or "false" (also "1" or "0").
+  /// A yes/no attribute, read as planner flags are (core::flagWord: true, yes, on, 1, ...).
   bool flag(const tinyxml2::XMLElement& element, const char* attribute, bool fallback) const;
   /// Three numbers in one attribute, "x y z".
   Eigen::Vector3d vector3(const tinyxml2::XMLElement& element, const char* attribute,

@@ -2,6 +2,7 @@
 
 #include <functional>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -10,6 +11,10 @@
 namespace kautham::core {
 
 enum class ParameterType { Real, Integer, Boolean };
+
+/// A yes/no word as users write it, any case: true, 1, yes, on or false, 0, no, off (none
+/// otherwise). Planner flags and the problem file's flag attributes both read flags so.
+std::optional<bool> flagWord(const std::string& text);
 
 /// A typed, documented planner parameter: what `kautham planners` lists. Declare one with the
 /// named builders of `Parameter` rather than by position.
