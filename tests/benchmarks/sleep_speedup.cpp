@@ -14,12 +14,10 @@
 #include <string>
 #include <vector>
 
-#include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <CLI/CLI.hpp>
 
 #include "kautham/core/ProblemLoader.h"
-#include "kautham/physics/PlanningContext.h"
-#include "kautham/physics/WorldStateSpace.h"
+#include "physics/PhysicsTestSupport.h"
 
 namespace {
 
@@ -28,50 +26,27 @@ using Clock = std::chrono::steady_clock;
 
 /// One setting's tree and what it cost.
 struct Grower {
-  core::Problem problem;
-  physics::PlanningContext context;
+  test::ContextFixture scene;
   std::vector<std::vector<double>> kept;
   std::mt19937_64 rng;
   double seconds = 0.0;
-  unsigned long steps = 0;
-  unsigned long propagations = 0;
-  unsigned long touchedStarts = 0;  ///< expansions whose end moved an object
 
-  Grower(core::Problem p, std::uint64_t seed)
-      : problem(std::move(p)),
-        context(problem, 0, physics::PropagationSettings{}),
-        kept{context.startState()},
-        rng(seed) {}
+  Grower(core::Problem problem, std::uint64_t seed)
+      : scene(std::move(problem)), kept{scene.context.startState()}, rng(seed) {}
+
+  unsigned long steps() const { return scene.context.propagator().counters().physicsSteps; }
 
   void expand() {
-    const auto& si = context.spaceInformation();
-    ompl::base::State* from = si->allocState();
-    ompl::base::State* to = si->allocState();
-    ompl::control::Control* control = si->allocControl();
+    const auto& si = scene.context.spaceInformation();
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    const std::size_t dimension = si->getControlSpace()->getDimension();
-    double* u = control->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
-    for (std::size_t i = 0; i < dimension; ++i) u[i] = unit(rng);
+    std::vector<double> control(si->getControlSpace()->getDimension());
+    for (double& u : control) u = unit(rng);
     const unsigned hold = std::uniform_int_distribution<unsigned>(2, 20)(rng);
-    std::vector<double> state =
-        kept[std::uniform_int_distribution<std::size_t>(0, kept.size() - 1)(rng)];
-    const unsigned long before = context.propagator().counters().physicsSteps;
+    scene.state = kept[std::uniform_int_distribution<std::size_t>(0, kept.size() - 1)(rng)];
     const Clock::time_point start = Clock::now();
-    bool valid = true;
-    for (unsigned k = 0; k < hold && valid; ++k) {
-      std::copy(state.begin(), state.end(), physics::WorldStateSpace::values(from));
-      context.propagator().propagate(from, control, si->getPropagationStepSize(), to);
-      const double* values = physics::WorldStateSpace::values(to);
-      state.assign(values, values + state.size());
-      valid = context.validityChecker().check(state.data()) == physics::Violation::None;
-      ++propagations;
-    }
+    const bool valid = scene.driveControls(control, hold) == physics::Violation::None;
     seconds += std::chrono::duration<double>(Clock::now() - start).count();
-    steps += context.propagator().counters().physicsSteps - before;
-    if (valid) kept.push_back(state);
-    si->freeControl(control);
-    si->freeState(from);
-    si->freeState(to);
+    if (valid) kept.push_back(scene.state);
   }
 };
 
@@ -101,8 +76,8 @@ int main(int argc, char** argv) {
     for (unsigned r = 0; r < rounds; ++r)
       for (Grower* g : {&withoutSleep, &withSleep})
         for (unsigned e = 0; e < expansionsPerRound; ++e) g->expand();
-    const double awakeRate = withoutSleep.steps / withoutSleep.seconds;
-    const double sleepRate = withSleep.steps / withSleep.seconds;
+    const double awakeRate = withoutSleep.steps() / withoutSleep.seconds;
+    const double sleepRate = withSleep.steps() / withSleep.seconds;
     std::printf("%-22s %12.0f %12.0f %8.2f %10zu %10zu\n", file.c_str(), awakeRate, sleepRate,
                 sleepRate / awakeRate, withoutSleep.kept.size(), withSleep.kept.size());
     std::fflush(stdout);
