@@ -1,5 +1,7 @@
 #include "KauthamPlanners.h"
 
+#include <map>
+
 #include "kautham/core/InputError.h"
 #include "kautham/core/Log.h"
 #include "kautham/planners/PlannerRegistry.h"
@@ -21,6 +23,26 @@ KauthamPlanner mapped(const std::string& name, const std::string& ours, const st
           "planner '" + name + "' is Kautham's " + what + "; planned here with '" + ours + "'"};
 }
 
+/// Kautham's geometric OMPL planners (omplRRTConnect, omplPRM, ...) onto ours of the same
+/// algorithm; the ones without a counterpart get the list of those there are.
+KauthamPlanner geometric(const std::string& name) {
+  static const std::map<std::string, std::string> ours{
+      {"omplRRTConnect", "RRTConnect"},   {"omplRRT", "RRT-geometric"}, {"omplRRTStar", "RRTstar"},
+      {"omplRRTstar", "RRTstar"},         {"omplPRM", "PRM"},           {"omplLazyRRT", "LazyRRT"},
+      {"omplKPIECE", "KPIECE-geometric"}, {"omplEST", "EST-geometric"}, {"omplBITstar", "BITstar"},
+      {"omplpRRT", "RRT-geometric"}};
+  const auto found = ours.find(name);
+  if (found != ours.end())
+    return mapped(name, found->second,
+                  std::string("geometric OMPL planner") +
+                      (name == "omplpRRT" ? " (parallel RRT; run here as one RRT)" : ""));
+  return {KauthamPlanner::Kind::Geometric, "RRTConnect",
+          "planner '" + name +
+              "' is one of Kautham's geometric OMPL planners that this program does not have; "
+              "use --planner with one it has: RRTConnect, RRT-geometric, RRTstar, PRM, LazyRRT, "
+              "KPIECE-geometric, EST-geometric, BITstar"};
+}
+
 }  // namespace
 
 KauthamPlanner classifyPlanner(const std::string& name) {
@@ -39,13 +61,7 @@ KauthamPlanner classifyPlanner(const std::string& name) {
     if (contains(name, "EST")) return mapped(name, "EST", what + "EST");
     if (contains(name, "RRT")) return mapped(name, "RRT", what + "RRT");
   }
-  if (startsWith(name, "ompl"))
-    return {KauthamPlanner::Kind::Geometric, "KPIECE",
-            "planner '" + name +
-                "' is one of Kautham's geometric OMPL planners, which this "
-                "program does not have yet (they come with the task-and-motion-planning baseline); "
-                "plan with a physics-based planner instead, e.g. --planner KPIECE (or RRT, EST; "
-                "`kautham planners` lists them)"};
+  if (startsWith(name, "ompl")) return geometric(name);
   return {KauthamPlanner::Kind::Unknown, "", ""};
 }
 

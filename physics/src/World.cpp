@@ -137,6 +137,39 @@ std::vector<Overlap> World::probeContacts(double depth) {
   return overlaps;
 }
 
+RobotTouches World::robotTouches(int heldBody) {
+  RobotTouches touches;
+  touches_ = &touches;
+  heldBody_ = heldBody;
+  dSpaceCollide(space_, this, &World::touchCallback);
+  touches_ = nullptr;
+  std::sort(touches.bodies.begin(), touches.bodies.end());
+  touches.bodies.erase(std::unique(touches.bodies.begin(), touches.bodies.end()),
+                       touches.bodies.end());
+  return touches;
+}
+
+void World::touchCallback(void* data, dGeomID a, dGeomID b) {
+  if (dGeomIsSpace(a) || dGeomIsSpace(b)) return dSpaceCollide2(a, b, data, &World::touchCallback);
+  static_cast<World*>(data)->recordTouch(a, b);
+}
+
+void World::recordTouch(dGeomID a, dGeomID b) {
+  const GeomTag& tagA = *static_cast<const GeomTag*>(dGeomGetData(a));
+  const GeomTag& tagB = *static_cast<const GeomTag*>(dGeomGetData(b));
+  const auto moving = [this](const GeomTag& tag) {
+    return tag.kind == GeomTag::Kind::RobotLink || (heldBody_ >= 0 && tag.body == heldBody_);
+  };
+  if (tagA.isRobot() && tagB.isRobot()) return;  // no self-collision (docs/problem-format.md)
+  if (moving(tagA) == moving(tagB)) return;      // the arm with what it holds, or bystanders
+  if (usableContacts(dCollide(a, b, 1, &contactBuffer_[0].geom, sizeof(dContact))) == 0) return;
+  const GeomTag& other = moving(tagA) ? tagB : tagA;
+  if (other.kind == GeomTag::Kind::Fixed || other.kind == GeomTag::Kind::RobotBase)
+    touches_->fixed = true;
+  if (other.kind == GeomTag::Kind::Target) touches_->target = true;
+  if (other.body >= 0) touches_->bodies.push_back(other.body);
+}
+
 unsigned World::takeEvents() {
   const unsigned events = events_;
   events_ = kNoEvent;

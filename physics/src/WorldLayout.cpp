@@ -1,5 +1,7 @@
 #include "kautham/physics/WorldLayout.h"
 
+#include <algorithm>
+
 namespace kautham::physics {
 
 const char* toString(BodyRole role) {
@@ -43,6 +45,16 @@ Eigen::Isometry3d WorldLayout::linkPose(const double* state, std::size_t body) c
   bodyPose.linear() = orientation(state, body).normalized().toRotationMatrix();
   bodyPose.translation() = position(state, body);
   return bodyPose * bodies[body].linkInBody;
+}
+
+void WorldLayout::placeBody(double* state, std::size_t body, const Eigen::Isometry3d& link) const {
+  const Eigen::Isometry3d pose = link * bodies[body].linkInBody.inverse();
+  double* s = state + body * kBodyStateSize;
+  const Eigen::Quaterniond turn(pose.linear());
+  const Eigen::Vector3d& p = pose.translation();
+  const double values[7] = {p.x(), p.y(), p.z(), turn.w(), turn.x(), turn.y(), turn.z()};
+  std::copy(values, values + 7, s + kPosition);
+  std::fill(s + kLinearVelocity, s + kBodyStateSize, 0.0);
 }
 
 Eigen::Vector3d WorldLayout::goalLinkPosition(const double* state) const {

@@ -3,6 +3,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "kautham/core/Log.h"
 #include "kautham/planners/PlannerRegistry.h"
 
 namespace kautham::planners {
@@ -68,6 +69,16 @@ bool isIgnoredKauthamParameter(const std::string& name) {
   return ignored.count(name) > 0;
 }
 
+/// Parameters of Kautham's geometric planners that change how Kautham plans but have no
+/// counterpart in OMPL's planners here (Kautham's own PRM connection rules and samplers): a
+/// file that sets them loads, with a warning that they are ignored.
+bool isUnmatchedKauthamParameter(const std::string& name) {
+  static const std::set<std::string> unmatched{"DistanceThreshold", "BounceDistanceThreshold",
+                                               "MinGrowTime", "MinExpandTime",
+                                               "Sampler 0(r) 1(h) 2(sdk) 3(g)"};
+  return unmatched.count(name) > 0;
+}
+
 std::string unknownParameter(const PlanRequest& request, const std::string& name) {
   std::string known;
   for (const auto* set : {&request.common, &request.parameters})
@@ -99,9 +110,13 @@ PlanRequest makeRequest(const core::Problem& problem,
     try {
       // Kautham's generic parameters start with '_'; those we do not use are skipped, and so
       // are the file planner's own parameters when the command line picks another planner.
-      if (!setParameter(request, p.name, p.value) && p.name.front() != '_' && !otherPlanner &&
-          !isIgnoredKauthamParameter(p.name))
+      if (setParameter(request, p.name, p.value) || p.name.front() == '_' || otherPlanner ||
+          isIgnoredKauthamParameter(p.name))
+        continue;
+      if (!isUnmatchedKauthamParameter(p.name))
         throw std::invalid_argument(unknownParameter(request, p.name));
+      core::warning(p.where.str() + ": Kautham's parameter '" + p.name +
+                    "' has no counterpart in " + request.planner + " here; ignored");
     } catch (const std::invalid_argument& e) {
       throw core::InputError(p.where, e.what());
     }

@@ -3,9 +3,10 @@
 // The built-in planners, one line per file that registers some: a new built-in planner is a
 // file defining `void registerSomething(PlannerRegistry&)` (see ompl/OmplControlPlanners.cpp) and a
 // line here. Planners of other projects come from plugins instead (docs/plugins.md).
-#define KAUTHAM_BUILTIN_PLANNERS(PLANNERS)                                          \
-  PLANNERS(registerOmplControlPlanners) /* KPIECE, RRT, SST, EST, PDST, o-KPIECE */ \
-  PLANNERS(registerPKpiece)             /* p-KPIECE */
+#define KAUTHAM_BUILTIN_PLANNERS(PLANNERS)                                            \
+  PLANNERS(registerOmplControlPlanners)   /* KPIECE, RRT, SST, EST, PDST, o-KPIECE */ \
+  PLANNERS(registerPKpiece)               /* p-KPIECE */                              \
+  PLANNERS(registerOmplGeometricPlanners) /* RRTConnect, PRM, RRTstar, ... */
 
 namespace kautham::planners {
 

@@ -51,24 +51,42 @@ TEST_F(StartSceneTest, ViewOfAProblemFileShowsItsStartInThePlanPage) {
   EXPECT_NE(page.find("\"start_scene\""), std::string::npos);
 }
 
-TEST(KauthamPlannerNames, CheckAcceptsAGeometricKauthamPlannerAndSaysWhichPlannerToUse) {
+TEST(KauthamPlannerNames, CheckMapsAGeometricKauthamPlannerOntoOurs) {
   const CommandRun run = kautham("check " + kMobileBase);
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("warning: " + kMobileBase +
-                            ":24: planner 'omplRRTConnect' is one of Kautham's geometric OMPL "
-                            "planners"),
+                            ":24: planner 'omplRRTConnect' is Kautham's geometric OMPL planner; "
+                            "planned here with 'RRTConnect'"),
             std::string::npos)
       << run.output;
-  EXPECT_NE(run.output.find("e.g. --planner KPIECE"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("\nok\n"), std::string::npos) << run.output;
 }
 
-TEST(KauthamPlannerNames, PlanRejectsItNamingTheLineAndThePlannerToUse) {
-  const CommandRun run = kautham("plan " + kMobileBase + " --time 1");
+TEST(KauthamPlannerNames, PlanRunsAFileNamingOmplRRTConnectWithRRTConnect) {
+  const CommandRun run = kautham("plan " + kMobileBase + " --time 5 --seed 1");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("planner   RRTConnect, seed 1"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("replay    reaches the goal"), std::string::npos) << run.output;
+}
+
+using GeometricNamesTest = test::TemporaryFolderTest;
+
+TEST_F(GeometricNamesTest, PlanRejectsAGeometricPlannerWeDoNotHaveNamingTheLineAndOurs) {
+  std::string text = test::readFile(fs::path(KAUTHAM_SOURCE_DIR) / kMobileBase);
+  text.replace(text.find("omplRRTConnect"), 14, "omplFMT");
+  // The copy sits beside the original, so its relative model paths still resolve.
+  const fs::path copy = fs::path(KAUTHAM_SOURCE_DIR) / "tests/data/kautham_compat" /
+                        ("fmt_" + folder.filename().string() + ".xml");
+  test::writeFile(copy, text);
+  const CommandRun run = kautham("plan '" + copy.string() + "' --time 1");
+  fs::remove(copy);
   EXPECT_EQ(run.exitCode, 2) << run.output;
-  EXPECT_NE(run.output.find("mobile_base.xml:24: planner 'omplRRTConnect'"), std::string::npos)
+  EXPECT_NE(run.output.find(":24: planner 'omplFMT' is one of Kautham's geometric OMPL planners "
+                            "that this program does not have"),
+            std::string::npos)
       << run.output;
-  EXPECT_NE(run.output.find("--planner KPIECE"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("RRTConnect, RRT-geometric, RRTstar, PRM"), std::string::npos)
+      << run.output;
 }
 
 TEST(KauthamPlannerNames, CheckTakesPlannerAndNoWarningIsPrintedOnStdout) {

@@ -23,8 +23,10 @@ namespace {
 TEST(PlannerRegistryTest, OffersTheBuiltInPlanners) {
   std::vector<std::string> names;
   for (const auto* entry : plannerRegistry().entries()) names.push_back(entry->name);
-  EXPECT_EQ(names, (std::vector<std::string>{"EST", "KPIECE", "PDST", "RRT", "SST", "o-KPIECE",
-                                             "p-KPIECE"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"BITstar", "EST", "EST-geometric", "KPIECE",
+                                             "KPIECE-geometric", "LazyRRT", "PDST", "PRM", "RRT",
+                                             "RRT-geometric", "RRTConnect", "RRTstar", "SST",
+                                             "o-KPIECE", "p-KPIECE"}));
 }
 
 TEST(PlannerRegistryTest, EveryPlannersSpecsAreWellFormed) {

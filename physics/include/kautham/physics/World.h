@@ -23,6 +23,14 @@ struct Overlap {
   double depth = 0.0;  ///< metres
 };
 
+/// What the robot's moving links, and an object it holds, touch at the current poses.
+struct RobotTouches {
+  bool fixed = false;       ///< a fixed obstacle (or, for a held object, the robot's base)
+  bool target = false;      ///< the target object
+  std::vector<int> bodies;  ///< objects touched, movable or target (indices into the layout)
+  bool any() const { return fixed || target || !bodies.empty(); }
+};
+
 /// A robot joint driven by a velocity motor: one control of the planner.
 struct Actuator {
   std::string name;
@@ -74,6 +82,10 @@ class World {
   /// Detects contacts without stepping (to check a start state): records contact events and
   /// returns every pair that interpenetrates deeper than `depth` metres.
   std::vector<Overlap> probeContacts(double depth);
+  /// Collision query without stepping, for geometric planning: what the robot's moving links
+  /// and the body `heldBody` (an object carried by the gripper; -1 for none) touch, among the
+  /// things that move with neither. Makes no contact joints and records no events.
+  RobotTouches robotTouches(int heldBody = -1);
   /// Events (ContactEvent flags) recorded since the last call, which clears them.
   unsigned takeEvents();
 
@@ -86,6 +98,8 @@ class World {
   friend class Builder;
 
   static void nearCallback(void* data, dGeomID a, dGeomID b);
+  static void touchCallback(void* data, dGeomID a, dGeomID b);
+  void recordTouch(dGeomID a, dGeomID b);
   void collide(dGeomID a, dGeomID b);
   bool diverged() const;
   static bool isAwake(dBodyID body);  ///< a body that steps (not asleep, not static geometry)
@@ -117,6 +131,8 @@ class World {
   std::vector<char> touched_;  ///< per body: touched by the robot since takeTouchedBodies()
   std::vector<Overlap>* overlaps_ = nullptr;  ///< set while probeContacts runs
   double overlapDepth_ = 0.0;
+  RobotTouches* touches_ = nullptr;  ///< set while robotTouches runs
+  int heldBody_ = -1;
 };
 
 }  // namespace kautham::physics

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <vector>
+
+#include "kautham/physics/PlanningContext.h"
+#include "kautham/physics/Replay.h"
+
+namespace kautham::physics {
+
+/// A path of joint values (one vector per waypoint, radians or metres) turned into controls
+/// that the physics executes: what a geometric planner's plan becomes, so that replay and
+/// validation treat it as any other plan.
+struct TrackedPath {
+  std::vector<ControlStep> controls;
+  std::vector<std::vector<double>> states;  ///< the world after each control (and at the start)
+  Violation violation = Violation::None;    ///< the first the tracking met (it stops there)
+  bool complete = false;                    ///< every waypoint reached, all states valid
+};
+
+struct TrackingSettings {
+  double speed = 0.5;       ///< fraction of each joint's velocity limit
+  double tolerance = 1e-3;  ///< rad or m: a waypoint counts as reached within this
+  /// Controls a segment may take beyond its duration at the tracking speed, to settle.
+  unsigned maxControlsPerWaypoint = 20;
+};
+
+/// Drives the robot along the straight joint-space segments between the waypoints through the
+/// context's propagator, starting from `start` (a world state): a reference point moves along
+/// the path at the tracking speed and waits at each waypoint; each control (the shortest
+/// control duration) asks for the joint velocity that brings the joints from where they really
+/// are to the reference. Stops at the first invalid state (full validity rules).
+TrackedPath trackJointPath(PlanningContext& context, const std::vector<double>& start,
+                           const std::vector<std::vector<double>>& waypoints,
+                           const TrackingSettings& settings = {});
+
+}  // namespace kautham::physics

@@ -1,0 +1,166 @@
+#include "kautham/physics/PathTracking.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "kautham/physics/WorldStateSpace.h"
+
+namespace kautham::physics {
+
+namespace {
+
+/// Follows the path with a reference point that moves along it at the tracking speed: each
+/// control lasts the shortest control duration and asks for the velocity that brings the joints
+/// from where they really are to where the reference will be at its end. So motor lag is
+/// corrected at every control rather than summed, and the robot slows into each waypoint (the
+/// reference waits there), so it does not overshoot a corner of the path into an obstacle.
+class Tracker {
+ public:
+  Tracker(PlanningContext& context, const std::vector<double>& start,
+          const TrackingSettings& settings)
+      : context_(context),
+        layout_(context.layout()),
+        si_(*context.spaceInformation()),
+        settings_(settings),
+        steps_(si_.getMinControlDuration()),
+        duration_(steps_ * si_.getPropagationStepSize()),
+        linkSpeedLimit_(context.problem().kinodynamics.maxLinkSpeed),
+        from_(si_.allocState()),
+        to_(si_.allocState()),
+        control_(si_.allocControl()) {
+    std::copy(start.begin(), start.end(), WorldStateSpace::values(from_));
+    path_.states.push_back(start);
+  }
+  ~Tracker() {
+    si_.freeState(from_);
+    si_.freeState(to_);
+    si_.freeControl(control_);
+  }
+  Tracker(const Tracker&) = delete;
+  Tracker& operator=(const Tracker&) = delete;
+
+  /// Follows the straight joint-space segment from `a` to `b`; false if the tracking must stop.
+  bool follow(const std::vector<double>& a, const std::vector<double>& b) {
+    const double length = segmentDuration(a, b);  // seconds at the tracking speed
+    double elapsed = 0.0;
+    for (unsigned n = 0; n < settings_.maxControlsPerWaypoint + length / duration_; ++n) {
+      elapsed += duration_;
+      const double share = length > 0.0 ? std::min(1.0, elapsed / length) : 1.0;
+      std::vector<double> reference(a.size());
+      for (std::size_t j = 0; j < a.size(); ++j) reference[j] = a[j] + share * (b[j] - a[j]);
+      if (share >= 1.0 && largestError(b) <= settings_.tolerance) return true;
+      if (!apply(reference)) return false;
+    }
+    return true;  // close enough: the next segment starts from where the joints are
+  }
+
+  TrackedPath result(bool complete) {
+    path_.complete = complete && path_.violation == Violation::None;
+    return std::move(path_);
+  }
+
+ private:
+  /// Seconds the segment takes at the tracking speed: no joint faster than its share of its
+  /// velocity limit, and no link faster than the same share of the link speed limit (a long arm
+  /// on a mobile base would pass it at joint speeds that are fine for the joints).
+  double segmentDuration(const std::vector<double>& a, const std::vector<double>& b) const {
+    double duration = 0.0;
+    for (std::size_t j = 0; j < a.size(); ++j)
+      duration = std::max(
+          duration, std::abs(b[j] - a[j]) / (settings_.speed * layout_.joints[j].maxVelocity));
+    return std::max(duration, linkTravel(a, b) / (settings_.speed * linkSpeedLimit_));
+  }
+
+  /// The longest distance (m) a robot link's origin travels along the segment.
+  double linkTravel(const std::vector<double>& a, const std::vector<double>& b) const {
+    constexpr int kSamples = 8;
+    const core::RobotInstance& robot = context_.problem().robot;
+    std::vector<Eigen::Isometry3d> previous = robot.model.linkPoses(robot.home.isometry(), a);
+    std::vector<double> travel(previous.size(), 0.0);
+    for (int i = 1; i <= kSamples; ++i) {
+      std::vector<double> q(a.size());
+      for (std::size_t j = 0; j < a.size(); ++j) q[j] = a[j] + (b[j] - a[j]) * i / kSamples;
+      const std::vector<Eigen::Isometry3d> poses = robot.model.linkPoses(robot.home.isometry(), q);
+      for (std::size_t l = 0; l < poses.size(); ++l)
+        travel[l] += (poses[l].translation() - previous[l].translation()).norm();
+      previous = poses;
+    }
+    return *std::max_element(travel.begin(), travel.end());
+  }
+
+  const double* joints() const {
+    return WorldStateSpace::values(from_) + layout_.jointPositionIndex();
+  }
+
+  double largestError(const std::vector<double>& target) const {
+    double largest = 0.0;
+    for (std::size_t j = 0; j < target.size(); ++j)
+      largest = std::max(largest, std::abs(target[j] - joints()[j]));
+    return largest;
+  }
+
+  /// One control towards `reference`, propagated one step at a time as replays do (so the
+  /// plan replays bit for bit), stopping at the first invalid state.
+  bool apply(const std::vector<double>& reference) {
+    std::vector<double> velocities(reference.size());
+    for (std::size_t j = 0; j < reference.size(); ++j)
+      velocities[j] = (reference[j] - joints()[j]) / duration_;
+    std::vector<double> u = context_.propagator().mapping().controlsFor(velocities);
+    for (double& value : u) value = std::clamp(value, -1.0, 1.0);
+    auto* values = control_->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
+    std::copy(u.begin(), u.end(), values);
+
+    const double stepSize = si_.getPropagationStepSize();
+    for (unsigned s = 0; s < steps_; ++s) {
+      context_.propagator().propagate(from_, control_, stepSize, to_);
+      std::swap(from_, to_);
+      const Violation violation = context_.validityChecker().check(WorldStateSpace::values(from_));
+      if (violation != Violation::None) {
+        path_.violation = violation;
+        path_.controls.push_back({u, s + 1});
+        record();
+        return false;
+      }
+    }
+    path_.controls.push_back({u, steps_});
+    record();
+    return true;
+  }
+
+  void record() {
+    const double* values = WorldStateSpace::values(from_);
+    path_.states.emplace_back(values, values + layout_.stateSize());
+  }
+
+  PlanningContext& context_;
+  const WorldLayout& layout_;
+  const ompl::control::SpaceInformation& si_;
+  TrackingSettings settings_;
+  unsigned steps_;         ///< propagation steps per control: the shortest a control may last
+  double duration_;        ///< seconds per control
+  double linkSpeedLimit_;  ///< m/s
+  ompl::base::State* from_;
+  ompl::base::State* to_;
+  ompl::control::Control* control_;
+  TrackedPath path_;
+};
+
+}  // namespace
+
+TrackedPath trackJointPath(PlanningContext& context, const std::vector<double>& start,
+                           const std::vector<std::vector<double>>& waypoints,
+                           const TrackingSettings& settings) {
+  Tracker tracker(context, start, settings);
+  const WorldLayout& layout = context.layout();
+  std::vector<double> from(start.begin() + static_cast<long>(layout.jointPositionIndex()),
+                           start.begin() + static_cast<long>(layout.jointVelocityIndex()));
+  for (const std::vector<double>& waypoint : waypoints) {
+    if (!tracker.follow(from, waypoint)) return tracker.result(false);
+    from = waypoint;
+  }
+  return tracker.result(true);
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,90 @@
+#include "kautham/physics/SceneChecker.h"
+
+#include <algorithm>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+
+namespace kautham::physics {
+
+SceneChecker::SceneChecker(const ompl::base::SpaceInformationPtr& si, World& world,
+                           const JointSpace& joints, int gripperLink, const double* scene,
+                           const WorldValidityChecker* rules)
+    : StateValidityChecker(si),
+      world_(&world),
+      rules_(rules),
+      joints_(&joints),
+      gripperLink_(gripperLink),
+      scene_(scene, scene + world.layout().stateSize()) {}
+
+void SceneChecker::setScene(const double* scene) {
+  std::copy(scene, scene + scene_.size(), scene_.begin());
+}
+
+std::vector<double> SceneChecker::stateAt(const double* c) const {
+  std::vector<double> state(scene_.size());
+  const std::vector<double> q = joints_->jointValues(c);
+  joints_->placeRobot(q, scene_.data(), state.data());
+  if (held_)
+    world_->layout().placeBody(state.data(), held_->body,
+                               joints_->linkPose(q, gripperLink_) * held_->inGripper);
+  return state;
+}
+
+void SceneChecker::setClearance(double metres, const double* start) {
+  clearance_ = 0.0;
+  shifts_.clear();
+  if (!(metres > 0.0)) return;
+  const std::vector<double> state = stateAt(start);
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {-1.0, 1.0}) {
+      const Eigen::Vector3d shift = sign * metres * Eigen::Vector3d::Unit(axis);
+      if (!touchesShifted(state, shift).any()) shifts_.push_back(shift);
+    }
+  clearance_ = metres;
+}
+
+RobotTouches SceneChecker::touchesShifted(std::vector<double> state,
+                                          const Eigen::Vector3d& offset) const {
+  const WorldLayout& layout = world_->layout();
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    const bool moving = layout.bodies[b].role == BodyRole::Robot || (held_ && held_->body == b);
+    if (!moving) continue;
+    double* p = state.data() + b * WorldLayout::kBodyStateSize + WorldLayout::kPosition;
+    for (int k = 0; k < 3; ++k) p[k] += offset[k];
+  }
+  RobotTouches touches;
+  {
+    const std::lock_guard<std::mutex> lock(worldMutex_);
+    world_->writeState(state.data());
+    touches = world_->robotTouches(held_ ? static_cast<int>(held_->body) : -1);
+  }
+  if (obstacles_ == Obstacles::FixedOnly) {
+    // Movable objects are no obstacles here; the target still is.
+    touches.bodies.erase(std::remove_if(touches.bodies.begin(), touches.bodies.end(),
+                                        [&layout](int b) {
+                                          return layout.bodies[static_cast<std::size_t>(b)].role ==
+                                                 BodyRole::Movable;
+                                        }),
+                         touches.bodies.end());
+  }
+  return touches;
+}
+
+RobotTouches SceneChecker::touchesAt(const double* c) const {
+  ++checks_;
+  const std::vector<double> state = stateAt(c);
+  RobotTouches touches = touchesShifted(state, Eigen::Vector3d::Zero());
+  for (const Eigen::Vector3d& shift : shifts_) {
+    if (touches.any()) break;
+    touches = touchesShifted(state, shift);
+  }
+  return touches;
+}
+
+bool SceneChecker::isValid(const ompl::base::State* state) const {
+  const double* c = state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
+  if (rules_ && rules_->check(stateAt(c).data()) != Violation::None) return false;
+  return !touchesAt(c).any();
+}
+
+}  // namespace kautham::physics

@@ -1,0 +1,169 @@
+// The geometric planners (issue 12): configuration coordinates, collision checks of the frozen
+// scene without physics, inverse kinematics for pose goals, and plans that the physics
+// executes, on the real problem files.
+
+#include <random>
+
+#include <gtest/gtest.h>
+#include <ompl/util/Console.h>
+
+#include "TestPaths.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/planners/Solve.h"
+#include "kautham/planners/geometric/GeometricQuery.h"
+
+namespace kautham::planners {
+namespace {
+
+const bool quietOmpl = [] {
+  ompl::msg::setLogLevel(ompl::msg::LOG_ERROR);
+  return true;
+}();
+
+struct Scene {
+  explicit Scene(const std::string& file)
+      : problem(core::loadProblem(test::repoFile(file))), context(problem, 0, {}), query(context) {}
+  core::Problem problem;
+  physics::PlanningContext context;
+  geometric::GeometricQuery query;
+};
+
+TEST(JointSpaceTest, TheStartCoordinatesPlaceTheRobotExactlyWhereThePhysicsStartsIt) {
+  Scene scene("problems/kuka_clutter_10.xml");
+  const std::vector<double> placed =
+      scene.query.checker().stateAt(scene.query.joints().start().data());
+  const std::vector<double>& start = scene.context.startState();
+  ASSERT_EQ(placed.size(), start.size());
+  for (std::size_t i = 0; i < start.size(); ++i) EXPECT_NEAR(placed[i], start[i], 1e-9) << i;
+}
+
+TEST(SceneCheckerTest, TheStartIsFreeAndAGripperInsideACanTouchesThatCan) {
+  Scene scene("problems/kuka_clutter_10.xml");
+  physics::SceneChecker& checker = scene.query.checker();
+  EXPECT_FALSE(checker.touchesAt(scene.query.joints().start().data()).any());
+
+  const physics::WorldLayout& layout = scene.context.layout();
+  std::size_t can = 0;
+  while (layout.bodies[can].name != "can1") ++can;
+  physics::PoseTarget inside;
+  inside.position = layout.linkPose(scene.context.startState().data(), can).translation();
+  inside.approach = Eigen::Vector3d(0, 0, -1);
+  inside.tolerance = 0.01;
+  inside.angleTolerance = 0.2;
+  std::optional<std::vector<double>> c;
+  for (int attempt = 0; attempt < 50 && !c; ++attempt) {
+    std::vector<double> seed(scene.query.joints().dimension(), 0.1 + 0.016 * attempt);
+    c = scene.query.ik().solve(inside, seed);
+  }
+  ASSERT_TRUE(c) << "no IK solution reaches can1";
+  const physics::RobotTouches touches = checker.touchesAt(c->data());
+  EXPECT_NE(std::find(touches.bodies.begin(), touches.bodies.end(), static_cast<int>(can)),
+            touches.bodies.end());
+  // Where would the arm go if nothing blocked? Movable objects are then no obstacles.
+  checker.setObstacles(physics::Obstacles::FixedOnly);
+  const physics::RobotTouches fixedOnly = checker.touchesAt(c->data());
+  EXPECT_EQ(std::find(fixedOnly.bodies.begin(), fixedOnly.bodies.end(), static_cast<int>(can)),
+            fixedOnly.bodies.end());
+}
+
+TEST(SceneCheckerTest, AHeldObjectMovesWithTheGripper) {
+  Scene scene("problems/kuka_clutter_10.xml");
+  physics::SceneChecker& checker = scene.query.checker();
+  const physics::WorldLayout& layout = scene.context.layout();
+  std::size_t can = 0;
+  while (layout.bodies[can].name != "can1") ++can;
+  Eigen::Isometry3d inGripper = Eigen::Isometry3d::Identity();
+  inGripper.translation() = Eigen::Vector3d(0, 0, 0.05);
+  checker.hold(physics::HeldObject{can, inGripper});
+  std::vector<double> c = scene.query.joints().start();
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c[i] = std::min(1.0, c[i] + 0.05);
+    const std::vector<double> state = checker.stateAt(c.data());
+    const Eigen::Isometry3d gripper = scene.query.joints().linkPose(
+        scene.query.joints().jointValues(c.data()), scene.query.gripperLink());
+    EXPECT_TRUE(layout.linkPose(state.data(), can).isApprox(gripper * inGripper, 1e-9)) << i;
+  }
+}
+
+TEST(InverseKinematicsTest, SolvesTheSidePreGraspOfTheClutterSceneWithinHalfItsTolerance) {
+  Scene scene("problems/kuka_clutter_5.xml");
+  const physics::GoalSpec& goal = scene.context.goal().spec();
+  physics::PoseTarget target;
+  target.position = goal.position;
+  target.approach = goal.approach;
+  target.levelAxis = goal.levelAxis;
+  target.tolerance = 0.5 * goal.tolerance;
+  target.angleTolerance = 0.5 * goal.approachTolerance;
+  int solved = 0;
+  std::mt19937 random(7);  // random seeds, as the goal sampler uses
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int attempt = 0; attempt < 40; ++attempt) {
+    std::vector<double> seed(scene.query.joints().dimension());
+    for (double& value : seed) value = uniform(random);
+    const auto c = scene.query.ik().solve(target, seed);
+    if (!c) continue;
+    ++solved;
+    const auto [position, angle] = scene.query.ik().errors(target, *c);
+    EXPECT_LE(position, target.tolerance);
+    EXPECT_LE(angle, target.angleTolerance);
+    const std::vector<double> state = scene.query.checker().stateAt(c->data());
+    EXPECT_LE(scene.context.goal().distance(state.data()), 0.5 * goal.tolerance + 1e-9);
+  }
+  EXPECT_GE(solved, 3);  // a 7-joint arm from random seeds: about one in five converges
+}
+
+struct Planned {
+  PlanOutcome outcome;
+  physics::ReplayResult replay;
+};
+
+Planned plan(const std::string& file, const std::string& planner, std::uint32_t seed) {
+  const core::Problem problem = core::loadProblem(test::repoFile(file));
+  const PlanRequest request =
+      makeRequest(problem, planner, {{"time_limit", "60"}}, seedRandomness(seed));
+  physics::PlanningContext context(problem, 0, request.propagation());
+  Planned run;
+  run.outcome = solve(context, request);
+  run.replay = physics::replay(context, run.outcome.controls);
+  return run;
+}
+
+TEST(GeometricPlannerTest, RRTConnectSolvesAConfigurationQueryOfTheKukaAtTheTable) {
+  const Planned run = plan("problems/kautham/kuka_table_rrtconnect.xml", "RRTConnect", 1);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal);
+  EXPECT_EQ(run.replay.firstViolation, physics::Violation::None);
+  // It ends on the goal configuration, not at the tolerance's edge.
+  EXPECT_LT(run.replay.finalGoalDistance, 0.01);
+  EXPECT_GT(run.outcome.tree.endEffector.size(), 1u);
+}
+
+TEST(GeometricPlannerTest, TheProblemFilesOwnKauthamNameRunsThroughTheRequest) {
+  const core::Problem problem =
+      core::loadProblem(test::repoFile("problems/kautham/kuka_table_rrtconnect.xml"));
+  EXPECT_EQ(problem.planner.name, "omplRRTConnect");
+  const PlanRequest request = makeRequest(problem, std::string("RRTConnect"), {}, 1);
+  EXPECT_DOUBLE_EQ(request.parameters.real("range"), 0.1);  // Kautham's "Range"
+}
+
+TEST(GeometricPlannerTest, PlannersReachAPoseGoalByInverseKinematicsAndThePhysicsExecutesIt) {
+  for (const std::string planner : {"PRM", "RRTstar"}) {
+    SCOPED_TRACE(planner);
+    const Planned run = plan("problems/yumi_cans_5.xml", planner, 1);
+    ASSERT_TRUE(run.outcome.solved);
+    EXPECT_TRUE(run.replay.reachedGoal);
+  }
+}
+
+TEST(GeometricPlannerTest, AFixedSeedGivesTheSamePlan) {
+  const Planned a = plan("problems/yumi_cans_5.xml", "RRTConnect", 3);
+  const Planned b = plan("problems/yumi_cans_5.xml", "RRTConnect", 3);
+  ASSERT_EQ(a.outcome.controls.size(), b.outcome.controls.size());
+  for (std::size_t i = 0; i < a.outcome.controls.size(); ++i) {
+    EXPECT_EQ(a.outcome.controls[i].values, b.outcome.controls[i].values) << i;
+    EXPECT_EQ(a.outcome.controls[i].steps, b.outcome.controls[i].steps) << i;
+  }
+}
+
+}  // namespace
+}  // namespace kautham::planners
