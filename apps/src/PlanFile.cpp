@@ -33,12 +33,19 @@ json trajectoryJson(const WorldLayout& layout, const physics::ReplayResult& repl
   return frames;
 }
 
-json controlsJson(const planners::PlanOutcome& outcome, double stepSize) {
+json controlsJson(const planners::PlanOutcome& outcome, double stepSize,
+                  const physics::WorldLayout& layout) {
   json controls = json::array();
   for (std::size_t i = 0; i < outcome.controls.size(); ++i) {
     const physics::ControlStep& c = outcome.controls[i];
     json control = {{"values", c.values}, {"steps", c.steps}, {"duration", c.steps * stepSize}};
     if (i < outcome.beliefs.size()) control["belief"] = outcome.beliefs[i];
+    // The task planner's grasps and releases, at the start of the control.
+    if (c.action != physics::GripperAction::None) control["gripper"] = toString(c.action);
+    if (c.action == physics::GripperAction::Grasp) {
+      control["body"] = c.object;
+      control["object"] = layout.bodies.at(static_cast<std::size_t>(c.object)).name;
+    }
     controls.push_back(control);
   }
   return controls;
@@ -177,7 +184,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
         {"planner", plannerPropertiesJson(outcome.statistics)}}},
       {"timing", {{"planning_time", outcome.statistics.planningTime}}},
       {"propagation_step_size", stepSize},
-      {"controls", controlsJson(outcome, stepSize)},
+      {"controls", controlsJson(outcome, stepSize, layout)},
       {"bodies", bodiesJson(layout)},
       {"shapes", shapesJson(layout)},
       {"frames", trajectoryJson(layout, replay)},

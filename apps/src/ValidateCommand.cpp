@@ -96,9 +96,28 @@ class PlanReader {
           steps.get<std::uint64_t>() > 1000000)
         bad("\"steps\" must be a whole number of propagation steps in [1, 1000000]");
       control.steps = static_cast<unsigned>(steps.get<std::uint64_t>());
+      readGripperAction(c, control, bad);
       result.controls.push_back(std::move(control));
     }
     return result;
+  }
+
+  /// A control's "gripper" ("grasp" with its "body", or "release"): the task planner's plans.
+  template <typename Bad>
+  static void readGripperAction(const json& c, physics::ControlStep& control, const Bad& bad) {
+    if (!c.contains("gripper")) return;
+    const json action = c["gripper"];
+    if (action == "release") {
+      control.action = physics::GripperAction::Release;
+    } else if (action == "grasp") {
+      const json body = c.value("body", json());
+      if (!body.is_number_unsigned() || body.get<std::uint64_t>() > 100000)
+        bad("a \"grasp\" needs the \"body\" it takes hold of (an index of \"bodies\")");
+      control.action = physics::GripperAction::Grasp;
+      control.object = static_cast<int>(body.get<std::uint64_t>());
+    } else {
+      bad("\"gripper\" must be \"grasp\" or \"release\", not " + action.dump());
+    }
   }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {

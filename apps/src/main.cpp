@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   app.parse_complete_callback([&plugins] { loadPlugins(plugins); });
 
   // OMPL's informational messages would drown our summary; its warnings and errors stay.
-  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  ompl::msg::setLogLevel(std::getenv("KAUTHAM_OMPL_DEBUG") ? ompl::msg::LOG_DEBUG
+                                                           : ompl::msg::LOG_WARN);
 
   int exitCode = kautham::apps::kExitSolved;
   kautham::apps::addPlanCommand(app, exitCode);

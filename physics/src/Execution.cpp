@@ -91,8 +91,11 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
   const std::size_t controlSize = context.propagator().mapping().size();
   std::copy(result.startState.begin(), result.startState.end(), values);
 
+  World& world = context.world();
+  world.release();
   for (const ControlStep& step : controls) {
     if (result.firstViolation != Violation::None) break;
+    applyGripperAction(world, step, values);
     if (sampler)
       sampler->perturbControl(step.values.data(), applied,
                               std::min(controlSize, step.values.size()), rng);
@@ -102,9 +105,10 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       context.propagator().propagate(current, control, stepSize, next);
       si->copyState(current, next);
       result.time += stepSize;
-      result.firstViolation = checker->check(values);
+      result.firstViolation = checker->check(values, checker->targetStart(), world.held());
     }
   }
+  world.release();
   result.finalState.assign(values, values + si->getStateDimension());
   si->freeControl(control);
   si->freeState(current);

@@ -116,7 +116,9 @@ class Tracker {
     for (unsigned s = 0; s < steps_; ++s) {
       context_.propagator().propagate(from_, control_, stepSize, to_);
       std::swap(from_, to_);
-      const Violation violation = context_.validityChecker().check(WorldStateSpace::values(from_));
+      const WorldValidityChecker& checker = context_.validityChecker();
+      const Violation violation = checker.check(WorldStateSpace::values(from_),
+                                                checker.targetStart(), context_.world().held());
       if (violation != Violation::None) {
         path_.violation = violation;
         path_.controls.push_back({u, s + 1});
@@ -161,6 +163,35 @@ TrackedPath trackJointPath(PlanningContext& context, const std::vector<double>& 
     from = waypoint;
   }
   return tracker.result(true);
+}
+
+std::shared_ptr<ompl::control::PathControl> controlPath(
+    const TrackedPath& tracked, const ompl::control::SpaceInformationPtr& si) {
+  auto path = std::make_shared<ompl::control::PathControl>(si);
+  ompl::base::State* state = si->allocState();
+  const auto copy = [&](const std::vector<double>& values) {
+    std::copy(values.begin(), values.end(), WorldStateSpace::values(state));
+  };
+  copy(tracked.states.front());
+  path->append(state);
+  ompl::control::Control* control = si->allocControl();
+  for (std::size_t i = 0; i < tracked.controls.size(); ++i) {
+    const ControlStep& step = tracked.controls[i];
+    std::copy(step.values.begin(), step.values.end(),
+              control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+    copy(tracked.states[i + 1]);
+    path->append(state, control, step.steps * si->getPropagationStepSize());
+  }
+  si->freeControl(control);
+  si->freeState(state);
+  return path;
+}
+
+void append(TrackedPath& path, const TrackedPath& next) {
+  path.controls.insert(path.controls.end(), next.controls.begin(), next.controls.end());
+  path.states.insert(path.states.end(), next.states.begin() + 1, next.states.end());
+  path.violation = next.violation;
+  path.complete = next.complete;
 }
 
 }  // namespace kautham::physics

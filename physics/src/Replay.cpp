@@ -4,6 +4,34 @@
 
 namespace kautham::physics {
 
+namespace {
+
+/// How far (m) from the object's bounding box the gripper's origin may be for a grasp to hold.
+constexpr double kGraspReach = 0.02;
+
+}  // namespace
+
+const char* toString(GripperAction action) {
+  switch (action) {
+    case GripperAction::Grasp:
+      return "grasp";
+    case GripperAction::Release:
+      return "release";
+    default:
+      return "";
+  }
+}
+
+void applyGripperAction(World& world, const ControlStep& step, const double* state) {
+  if (step.action == GripperAction::Release) world.release();
+  const auto body = static_cast<std::size_t>(step.object);
+  if (step.action != GripperAction::Grasp || step.object < 0 ||
+      body >= world.layout().bodies.size() || world.layout().bodies[body].role == BodyRole::Robot)
+    return;                 // nothing there to hold (a plan file is checked for it when read)
+  world.writeState(state);  // attach where the bodies are now
+  world.attach(body, kGraspReach);
+}
+
 ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& controls) {
   const auto& si = context.spaceInformation();
   const double stepSize = si->getPropagationStepSize();
@@ -18,19 +46,25 @@ ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& co
   ReplayResult result;
   result.frames.push_back({0.0, context.startState(), Violation::None, {}});
   double time = 0.0;
+  World& world = context.world();
+  const WorldValidityChecker& checker = context.validityChecker();
+  world.release();
   for (const ControlStep& step : controls) {
+    if (result.firstViolation != Violation::None) break;
+    applyGripperAction(world, step, values);
     std::copy(step.values.begin(), step.values.end(), velocities);
     for (unsigned i = 0; i < step.steps && result.firstViolation == Violation::None; ++i) {
-      context.world().takeTouchedBodies();
+      world.takeTouchedBodies();
       context.propagator().propagate(current, control, stepSize, next);
       si->copyState(current, next);
       time += stepSize;
-      const Violation violation = context.validityChecker().check(values);
+      const Violation violation = checker.check(values, checker.targetStart(), world.held());
       result.frames.push_back({time, std::vector<double>(values, values + si->getStateDimension()),
-                               violation, context.world().takeTouchedBodies()});
+                               violation, world.takeTouchedBodies()});
       result.firstViolation = violation;
     }
   }
+  world.release();
   si->freeControl(control);
   si->freeState(current);
   si->freeState(next);

@@ -61,9 +61,10 @@ RobotTouches SceneChecker::touchesShifted(std::vector<double> state,
   if (obstacles_ == Obstacles::FixedOnly) {
     // Movable objects are no obstacles here; the target still is.
     touches.bodies.erase(std::remove_if(touches.bodies.begin(), touches.bodies.end(),
-                                        [&layout](int b) {
-                                          return layout.bodies[static_cast<std::size_t>(b)].role ==
-                                                 BodyRole::Movable;
+                                        [&layout, this](int b) {
+                                          const auto body = static_cast<std::size_t>(b);
+                                          return layout.bodies[body].role == BodyRole::Movable &&
+                                                 !solid_.count(body);
                                         }),
                          touches.bodies.end());
   }
@@ -78,12 +79,26 @@ RobotTouches SceneChecker::touchesAt(const double* c) const {
     if (touches.any()) break;
     touches = touchesShifted(state, shift);
   }
+  if (objectMargin_ > 0.0 && !touches.any()) {
+    const WorldLayout& layout = world_->layout();
+    const double m = objectMargin_ + clearance_;
+    for (const Eigen::Vector3d& shift : {Eigen::Vector3d(m, 0, 0), Eigen::Vector3d(-m, 0, 0),
+                                         Eigen::Vector3d(0, m, 0), Eigen::Vector3d(0, -m, 0)}) {
+      for (int body : touchesShifted(state, shift).bodies)
+        if (layout.bodies[static_cast<std::size_t>(body)].role == BodyRole::Movable)
+          touches.bodies.push_back(body);
+      if (touches.any()) break;
+    }
+  }
   return touches;
 }
 
 bool SceneChecker::isValid(const ompl::base::State* state) const {
   const double* c = state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
-  if (rules_ && rules_->check(stateAt(c).data()) != Violation::None) return false;
+  const std::vector<double> placed = stateAt(c);
+  if (workspace_ && !workspace_->contains(world_->layout().goalLinkPosition(placed.data())))
+    return false;
+  if (rules_ && rules_->check(placed.data()) != Violation::None) return false;
   return !touchesAt(c).any();
 }
 

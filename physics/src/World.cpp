@@ -56,7 +56,7 @@ void World::writeState(const double* state) {
     const dReal* w = dBodyGetAngularVel(body);
     const bool resting =
         v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0 && w[0] == 0.0 && w[1] == 0.0 && w[2] == 0.0;
-    if (resting) dBodyDisable(body);
+    if (resting && !(held_ && body == bodies_[*held_])) dBodyDisable(body);
   }
 }
 
@@ -168,6 +168,41 @@ void World::recordTouch(dGeomID a, dGeomID b) {
     touches_->fixed = true;
   if (other.kind == GeomTag::Kind::Target) touches_->target = true;
   if (other.body >= 0) touches_->bodies.push_back(other.body);
+}
+
+bool World::attach(std::size_t body, double reach) {
+  release();
+  std::vector<double> state(layout_.stateSize());
+  readState(state.data());
+  const Eigen::Vector3d tcp = layout_.goalLinkPosition(state.data());
+  // Distance from the gripper to the object's shapes' bounding box, in the world.
+  Eigen::AlignedBox3d box;
+  const dReal* p = dBodyGetPosition(bodies_[body]);
+  const dReal* q = dBodyGetQuaternion(bodies_[body]);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
+  pose.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+  for (const ShapeInfo& shape : layout_.shapes)
+    if (shape.body == static_cast<int>(body))
+      box.extend(core::boundingBox(shape.shape, pose * shape.pose));
+  if (box.isEmpty() || box.exteriorDistance(tcp) > reach) return false;
+
+  dBodyID gripper = bodies_[static_cast<std::size_t>(layout_.goalBody)];
+  grip_ = dJointCreateFixed(world_, nullptr);
+  dJointAttach(grip_, gripper, bodies_[body]);
+  dJointSetFixed(grip_);
+  dBodyEnable(bodies_[body]);
+  dBodySetAutoDisableFlag(bodies_[body], 0);  // a held object never sleeps
+  held_ = body;
+  return true;
+}
+
+void World::release() {
+  if (grip_) dJointDestroy(grip_);
+  grip_ = nullptr;
+  if (held_ && std::find(sleepers_.begin(), sleepers_.end(), bodies_[*held_]) != sleepers_.end())
+    dBodySetAutoDisableFlag(bodies_[*held_], 1);
+  held_.reset();
 }
 
 unsigned World::takeEvents() {

@@ -83,6 +83,11 @@ Violation WorldValidityChecker::check(const double* state) const {
 
 Violation WorldValidityChecker::check(const double* state,
                                       const Eigen::Vector3d& targetReference) const {
+  return check(state, targetReference, std::nullopt);
+}
+
+Violation WorldValidityChecker::check(const double* state, const Eigen::Vector3d& targetReference,
+                                      std::optional<std::size_t> held) const {
   const unsigned flags = layout_->flags(state);
   if (flags & kSimulationDiverged) return Violation::SimulationDiverged;
   if (flags & kRobotTouchedFixed) return Violation::RobotTouchedFixed;
@@ -97,7 +102,7 @@ Violation WorldValidityChecker::check(const double* state,
   if (!workspace_.contains(layout_->goalLinkPosition(state))) return Violation::OutsideWorkspace;
   if (Violation v = checkRobot(state); v != Violation::None) return v;
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
-    if (layout_->bodies[b].role == BodyRole::Movable)
+    if (layout_->bodies[b].role == BodyRole::Movable && held != b)
       if (Violation v = checkObject(state, b); v != Violation::None) return v;
   return Violation::None;
 }

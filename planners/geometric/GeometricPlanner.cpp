@@ -10,33 +10,6 @@
 
 namespace kautham::planners::geometric {
 
-namespace {
-
-/// The tracked path as OMPL's control path over the context's world states.
-std::shared_ptr<ompl::control::PathControl> controlPath(
-    const physics::TrackedPath& tracked, const ompl::control::SpaceInformationPtr& si) {
-  auto path = std::make_shared<ompl::control::PathControl>(si);
-  ompl::base::State* state = si->allocState();
-  const auto copy = [&](const std::vector<double>& values) {
-    std::copy(values.begin(), values.end(), physics::WorldStateSpace::values(state));
-  };
-  copy(tracked.states.front());
-  path->append(state);
-  ompl::control::Control* control = si->allocControl();
-  for (std::size_t i = 0; i < tracked.controls.size(); ++i) {
-    const physics::ControlStep& step = tracked.controls[i];
-    std::copy(step.values.begin(), step.values.end(),
-              control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
-    copy(tracked.states[i + 1]);
-    path->append(state, control, step.steps * si->getPropagationStepSize());
-  }
-  si->freeControl(control);
-  si->freeState(state);
-  return path;
-}
-
-}  // namespace
-
 GeometricPlanner::GeometricPlanner(physics::PlanningContext& context, const std::string& name,
                                    const MakeGeometricPlanner& make)
     : Planner(context.spaceInformation(), name),
@@ -89,7 +62,7 @@ ompl::base::PlannerStatus GeometricPlanner::solve(
   const double* end = tracked.states.back().data();
   const bool exact = tracked.complete && context_.goal().reached(end);
   const auto& si = context_.spaceInformation();
-  pdef_->addSolutionPath(controlPath(tracked, si), !exact,
+  pdef_->addSolutionPath(physics::controlPath(tracked, si), !exact,
                          exact ? 0.0 : context_.goal().distance(end), getName());
   return exact ? ompl::base::PlannerStatus::EXACT_SOLUTION
                : ompl::base::PlannerStatus::APPROXIMATE_SOLUTION;

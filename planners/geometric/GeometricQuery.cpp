@@ -43,6 +43,10 @@ GeometricQuery::GeometricQuery(physics::PlanningContext& context) : context_(&co
 
 void GeometricQuery::setClearance(double metres) {
   checker_->setClearance(metres, joints_->start().data());
+  constexpr double kWorkspaceMargin = 0.01;  // m: about what the tracking deviates by
+  const Eigen::AlignedBox3d& workspace = context_->problem().workspace;
+  const Eigen::Vector3d inset = Eigen::Vector3d::Constant(std::max(metres, kWorkspaceMargin));
+  checker_->setWorkspace(Eigen::AlignedBox3d(workspace.min() + inset, workspace.max() - inset));
   constexpr double kFinestMotion = 0.002;  // m: finer checks cost more than they find
   const double step = std::max(metres, kFinestMotion) / joints_->stretch();
   // Bounded below: a long arm on a mobile base would otherwise check thousands of states per
@@ -53,7 +57,7 @@ void GeometricQuery::setClearance(double metres) {
   si_->setup();
 }
 
-ompl::base::GoalPtr GeometricQuery::problemGoal() {
+ompl::base::GoalPtr GeometricQuery::problemGoal(bool freeSpaceClear, std::vector<double> near) {
   const physics::GoalSpec& spec = context_->goal().spec();
   if (!spec.joints.empty()) return std::make_shared<ConfigurationGoal>(si_, *joints_, spec);
   physics::PoseTarget target;
@@ -62,12 +66,19 @@ ompl::base::GoalPtr GeometricQuery::problemGoal() {
   target.levelAxis = spec.levelAxis;
   target.tolerance = 0.5 * spec.tolerance;
   target.angleTolerance = 0.5 * spec.approachTolerance;
-  // The free space between the fingers must be clear in the scene, not only the pose reached.
-  const physics::WorkspaceGoal& goal = context_->goal();
-  physics::SceneChecker& checker = *checker_;
-  return std::make_shared<PoseGoal>(si_, *ik_, target, [&goal, &checker](const double* c) {
-    return goal.reached(checker.stateAt(c).data());
-  });
+  std::shared_ptr<PoseGoal> pose;
+  if (freeSpaceClear) {
+    // The free space between the fingers must be clear in the scene, not only the pose reached.
+    const physics::WorkspaceGoal& goal = context_->goal();
+    physics::SceneChecker& checker = *checker_;
+    pose = std::make_shared<PoseGoal>(si_, *ik_, target, [&goal, &checker](const double* c) {
+      return goal.reached(checker.stateAt(c).data());
+    });
+  } else {
+    pose = std::make_shared<PoseGoal>(si_, *ik_, target);
+  }
+  pose->seedNear(near.empty() ? joints_->start() : std::move(near));
+  return pose;
 }
 
 std::optional<CoordinatePath> GeometricQuery::plan(

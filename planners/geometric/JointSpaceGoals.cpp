@@ -1,5 +1,6 @@
 #include "kautham/planners/geometric/JointSpaceGoals.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <ompl/base/spaces/RealVectorStateSpace.h>
@@ -47,7 +48,11 @@ void PoseGoal::sampleGoal(ompl::base::State* state) const {
   const std::size_t dimension = si_->getStateDimension();
   std::vector<double> seed(dimension);
   for (int attempt = 0; attempt < kTries; ++attempt) {
-    for (double& value : seed) value = rng.uniform01();
+    // Near the arm first, ever wider (a tenth of the range, then up to half), then anywhere.
+    const bool near = !near_.empty() && attempt < kTries / 2;
+    const double spread = 0.02 + 0.5 * attempt / kTries;
+    for (std::size_t i = 0; i < seed.size(); ++i)
+      seed[i] = near ? std::clamp(near_[i] + rng.gaussian(0.0, spread), 0.0, 1.0) : rng.uniform01();
     const auto solution = ik_->solve(target_, seed);
     if (!solution) continue;
     std::copy(solution->begin(), solution->end(), coordinates(state));

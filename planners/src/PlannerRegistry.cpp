@@ -6,7 +6,8 @@
 #define KAUTHAM_BUILTIN_PLANNERS(PLANNERS)                                            \
   PLANNERS(registerOmplControlPlanners)   /* KPIECE, RRT, SST, EST, PDST, o-KPIECE */ \
   PLANNERS(registerPKpiece)               /* p-KPIECE */                              \
-  PLANNERS(registerOmplGeometricPlanners) /* RRTConnect, PRM, RRTstar, ... */
+  PLANNERS(registerOmplGeometricPlanners) /* RRTConnect, PRM, RRTstar, ... */         \
+  PLANNERS(registerTaskPlanners)          /* TMP, TMP-U */
 
 namespace kautham::planners {
 

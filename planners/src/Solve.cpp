@@ -13,6 +13,7 @@
 
 #include "kautham/planners/BeliefReporter.h"
 #include "kautham/planners/BeliefVertex.h"
+#include "kautham/planners/ControlReporter.h"
 #include "kautham/planners/ParallelPlanner.h"
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/PlannerRegistry.h"
@@ -137,6 +138,8 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
     const auto& si = context.spaceInformation();
     outcome.controls =
         controlsOf(path, si->getControlSpace()->getDimension(), si->getPropagationStepSize());
+    if (const auto* reporter = dynamic_cast<const ControlReporter*>(planner.get()))
+      outcome.controls = reporter->solutionControls();
     if (const auto* reporter = dynamic_cast<const BeliefReporter*>(planner.get()))
       outcome.beliefs = reporter->solutionBeliefs();
   }

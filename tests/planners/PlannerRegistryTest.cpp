@@ -25,8 +25,8 @@ TEST(PlannerRegistryTest, OffersTheBuiltInPlanners) {
   for (const auto* entry : plannerRegistry().entries()) names.push_back(entry->name);
   EXPECT_EQ(names, (std::vector<std::string>{"BITstar", "EST", "EST-geometric", "KPIECE",
                                              "KPIECE-geometric", "LazyRRT", "PDST", "PRM", "RRT",
-                                             "RRT-geometric", "RRTConnect", "RRTstar", "SST",
-                                             "o-KPIECE", "p-KPIECE"}));
+                                             "RRT-geometric", "RRTConnect", "RRTstar", "SST", "TMP",
+                                             "TMP-U", "o-KPIECE", "p-KPIECE"}));
 }
 
 TEST(PlannerRegistryTest, EveryPlannersSpecsAreWellFormed) {

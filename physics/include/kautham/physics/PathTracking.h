@@ -1,6 +1,9 @@
 #pragma once
 
+#include <memory>
 #include <vector>
+
+#include <ompl/control/PathControl.h>
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/Replay.h"
@@ -29,6 +32,14 @@ struct TrackingSettings {
 /// the path at the tracking speed and waits at each waypoint; each control (the shortest
 /// control duration) asks for the joint velocity that brings the joints from where they really
 /// are to the reference. Stops at the first invalid state (full validity rules).
+/// The tracked path as OMPL's control path over the context's world states (for the problem
+/// definition, so OMPL's tools see the solution).
+std::shared_ptr<ompl::control::PathControl> controlPath(
+    const TrackedPath& tracked, const ompl::control::SpaceInformationPtr& si);
+
+/// Appends `next` (tracked from where `path` ends) to `path`.
+void append(TrackedPath& path, const TrackedPath& next);
+
 TrackedPath trackJointPath(PlanningContext& context, const std::vector<double>& start,
                            const std::vector<std::vector<double>>& waypoints,
                            const TrackingSettings& settings = {});

@@ -8,11 +8,23 @@
 
 namespace kautham::physics {
 
-/// One control of a plan: joint velocity targets held for `steps` propagation steps.
+/// What the gripper does at the start of a control (the task planner's plans carry objects).
+enum class GripperAction { None, Grasp, Release };
+const char* toString(GripperAction action);  ///< "", "grasp" or "release"
+
+/// One control of a plan: joint velocity targets held for `steps` propagation steps, after the
+/// gripper's action, if any.
 struct ControlStep {
   std::vector<double> values;  ///< the normalized control, one number per control in [-1, 1]
   unsigned steps = 0;
+  GripperAction action = GripperAction::None;
+  int object = -1;  ///< the body a Grasp takes hold of (index into the layout's bodies)
 };
+
+/// Applies a control's gripper action to the world (in `state`, before the control): a grasp
+/// holds the object only if it is within the gripper's reach (World::attach), else nothing
+/// is held and the plan runs on without it, as a real gripper that closes on air.
+void applyGripperAction(World& world, const ControlStep& step, const double* state);
 
 /// The world after each propagation step of a replay (frame 0 is the start state).
 struct ReplayFrame {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <vector>
 
 #include <ompl/base/StateValidityChecker.h>
@@ -48,7 +49,12 @@ class SceneChecker : public ompl::base::StateValidityChecker {
   const std::vector<double>& scene() const { return scene_; }
   void hold(std::optional<HeldObject> object) { held_ = object; }
   const std::optional<HeldObject>& held() const { return held_; }
-  void setObstacles(Obstacles obstacles) { obstacles_ = obstacles; }
+  /// `solid`: movable objects that stay obstacles under Obstacles::FixedOnly (ones the task
+  /// planner found it cannot move).
+  void setObstacles(Obstacles obstacles, std::set<std::size_t> solid = {}) {
+    obstacles_ = obstacles;
+    solid_ = std::move(solid);
+  }
   /// A margin (m) the robot keeps from obstacles: a configuration is valid only if the robot
   /// (with what it holds) also touches nothing when shifted by it along each world axis, both
   /// ways, except along the directions in which it already touches something at `start`
@@ -56,6 +62,12 @@ class SceneChecker : public ompl::base::StateValidityChecker {
   /// path that grazes an obstacle fails when executed.
   void setClearance(double metres, const double* start);
   double clearance() const { return clearance_; }
+  /// A margin (m) kept from movable objects only, horizontally (on top of the clearance): the
+  /// objects inflated by their pose uncertainty (the task planner with uncertainty).
+  void setObjectMargin(double metres) { objectMargin_ = metres; }
+  /// Where the goal link must stay (the problem's workspace shrunk by a margin, so the
+  /// physics, tracking the path closely, does not leave the real one).
+  void setWorkspace(const Eigen::AlignedBox3d& box) { workspace_ = box; }
   std::uint64_t checks() const { return checks_; }
 
  private:
@@ -71,8 +83,11 @@ class SceneChecker : public ompl::base::StateValidityChecker {
 
   std::optional<HeldObject> held_;
   double clearance_ = 0.0;
+  double objectMargin_ = 0.0;
+  std::optional<Eigen::AlignedBox3d> workspace_;
   std::vector<Eigen::Vector3d> shifts_;  ///< the clearance's directions in use
   Obstacles obstacles_ = Obstacles::Everything;
+  std::set<std::size_t> solid_;
   mutable std::atomic<std::uint64_t> checks_{0};
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,15 @@ class World {
   /// and the body `heldBody` (an object carried by the gripper; -1 for none) touch, among the
   /// things that move with neither. Makes no contact joints and records no events.
   RobotTouches robotTouches(int heldBody = -1);
+  /// Fixes the object `body` to the gripper (the goal link's body) where it is now, with an
+  /// ODE fixed joint: the task planner's grasp. Returns false, holding nothing, if the object
+  /// is not within `reach` metres of the goal link's origin (measured to the object's
+  /// bounding box). Holding is not part of the state: replays and executions start with
+  /// release().
+  bool attach(std::size_t body, double reach);
+  /// Lets go of whatever the gripper holds.
+  void release();
+  std::optional<std::size_t> held() const { return held_; }
   /// Events (ContactEvent flags) recorded since the last call, which clears them.
   unsigned takeEvents();
 
@@ -132,6 +142,8 @@ class World {
   std::vector<Overlap>* overlaps_ = nullptr;  ///< set while probeContacts runs
   double overlapDepth_ = 0.0;
   RobotTouches* touches_ = nullptr;  ///< set while robotTouches runs
+  dJointID grip_ = nullptr;          ///< the fixed joint of attach()
+  std::optional<std::size_t> held_;
   int heldBody_ = -1;
 };
 

@@ -54,6 +54,10 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// As check(), with the target's reference position given: a run whose start was sampled
   /// (the target's pose is uncertain) measures the target's drift from where it started.
   Violation check(const double* state, const Eigen::Vector3d& targetReference) const;
+  /// As check(), with the object the gripper holds (a layout body) exempt from the object
+  /// checks: carried, it leaves the table and turns with the gripper by design.
+  Violation check(const double* state, const Eigen::Vector3d& targetReference,
+                  std::optional<std::size_t> held) const;
   /// Where the target stands at the start of the query.
   const Eigen::Vector3d& targetStart() const { return targetStart_; }
   std::optional<std::size_t> targetBody() const { return targetBody_; }

@@ -39,7 +39,10 @@ class GeometricQuery {
   /// The query's own goal over coordinates. A pre-grasp region is aimed at with half its
   /// tolerances, so the plan ends inside it with margin, and it also needs the goal's free
   /// space clear in the scene; a configuration goal is Kautham's.
-  ompl::base::GoalPtr problemGoal();
+  /// Without `freeSpaceClear`, a pre-grasp pose counts whatever fills the goal's free space
+  /// (where the task planner asks how it would reach the goal if nothing were in the way).
+  /// Pose goals seed their IK near `near` (the query's start when empty).
+  ompl::base::GoalPtr problemGoal(bool freeSpaceClear = true, std::vector<double> near = {});
 
   /// Plans from `start` to `goal` with `planner` (cleared first) until it solves or `ptc`;
   /// simplifies the path (shortcutting, at most a second) when asked. None if not solved.

@@ -29,9 +29,14 @@ class PoseGoal : public ompl::base::GoalSampleableRegion {
   /// that the planner will find invalid or unsatisfying and skip.
   void sampleGoal(ompl::base::State* state) const override;
   unsigned maxSampleCount() const override { return 1000000; }
+  /// Seeds IK near these coordinates first (where the arm is): the goal configurations found
+  /// are then near the arm's posture, and the paths to them short, instead of swinging the
+  /// arm to whichever of its many solutions a random seed falls into.
+  void seedNear(std::vector<double> coordinates) { near_ = std::move(coordinates); }
 
  private:
   const physics::InverseKinematics* ik_;
+  std::vector<double> near_;
   physics::PoseTarget target_;
   ConfigurationTest accept_;
   mutable ompl::RNG rng_;

@@ -1,0 +1,435 @@
+#include "kautham/planners/tmp/TaskPlanner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+#include <ompl/geometric/planners/rrt/RRTConnect.h>
+#include <ompl/util/Console.h>
+
+#include "kautham/physics/WorldStateSpace.h"
+#include "kautham/planners/geometric/JointSpaceGoals.h"
+
+namespace kautham::planners::tmp {
+
+namespace {
+
+using core::Parameter;
+
+/// m: a grasp holds when the gripper's origin is this close to the object's bounding box.
+constexpr double kGraspReach = 0.02;
+/// m: a placed object is released this high above where it stood, and drops onto the table.
+constexpr double kDropHeight = 0.005;
+/// m the gripper lifts a grasped object straight up before carrying it.
+constexpr double kLiftHeight = 0.03;
+/// Propagation steps the arm holds still after a release while the object settles.
+constexpr unsigned kSettleSteps = 10;
+/// Placements drawn for each object moved, and of those, how many the planner tries to reach.
+constexpr int kPlacementDraws = 300;
+constexpr std::size_t kPlacementsTried = 8;
+
+physics::PoseTarget pose(const Eigen::Isometry3d& gripper, double tolerance) {
+  physics::PoseTarget target;
+  target.position = gripper.translation();
+  target.approach = gripper.linear().col(2);
+  target.tolerance = tolerance;
+  target.angleTolerance = 0.05;
+  return target;
+}
+
+}  // namespace
+
+core::SettingsParameters<TaskSettings> TaskSettings::parameters(bool withUncertainty) {
+  core::SettingsParameters<TaskSettings> table;
+  table
+      .add(&TaskSettings::subQueryTime,
+           Parameter::real("sub_query_time")
+               .byDefault(2.0)
+               .range(0.01, 3600.0)
+               .describe("seconds each geometric sub-query (a reach, a carry) may take at most"))
+      .add(&TaskSettings::maxMoves, Parameter::integer("max_moves")
+                                        .byDefault(10)
+                                        .range(0, 1000)
+                                        .describe("objects moved out of the way at most"))
+      .add(&TaskSettings::speed,
+           Parameter::real("speed").byDefault(0.5).range(0.01, 1.0).describe(
+               "joint speed along every path, as a fraction of each joint's velocity limit"))
+      .add(&TaskSettings::clearance,
+           Parameter::real("clearance")
+               .byDefault(0.002)
+               .range(0.0, 0.1)
+               .describe("m the robot (and what it carries) keeps from every obstacle"))
+      .add(&TaskSettings::graspGap,
+           Parameter::real("grasp_gap")
+               .byDefault(0.01)
+               .range(0.0, 0.02)
+               .describe("m between an object's top and the gripper's origin when grasping it"))
+      .add(&TaskSettings::uncertainty,
+           Parameter::flag("uncertainty")
+               .byDefault(withUncertainty ? 1 : 0)
+               .describe("inflate movable objects by their pose uncertainty (TMP-U)"))
+      .add(&TaskSettings::sigmas,
+           Parameter::real("sigmas").byDefault(3.0).range(0.0, 10.0).describe(
+               "k: the inflation is k standard deviations of each object's x and y"));
+  return table;
+}
+
+TaskPlanner::TaskPlanner(physics::PlanningContext& context, const std::string& name,
+                         TaskSettings settings)
+    : Planner(context.spaceInformation(), name),
+      context_(context),
+      settings_(settings),
+      query_(context),
+      motionPlanner_(std::make_shared<ompl::geometric::RRTConnect>(query_.spaceInformation())) {
+  specs_.approximateSolutions = true;
+  addPlannerProgressProperty("objects_moved INTEGER", [this] { return std::to_string(moves_); });
+  addPlannerProgressProperty("sub_queries INTEGER", [this] { return std::to_string(subQueries_); });
+  addPlannerProgressProperty("collision_checks INTEGER",
+                             [this] { return std::to_string(query_.checker().checks()); });
+}
+
+void TaskPlanner::clear() {
+  Planner::clear();
+  motionPlanner_->clear();
+  plan_ = {};
+  corridors_.clear();
+  unmovable_.clear();
+  moves_ = 0;
+  subQueries_ = 0;
+}
+
+std::vector<double> TaskPlanner::coordinatesNow() const {
+  const physics::WorldLayout& layout = context_.layout();
+  const auto first = now().begin() + static_cast<long>(layout.jointPositionIndex());
+  return query_.joints().coordinatesFor(
+      std::vector<double>(first, first + static_cast<long>(layout.joints.size())));
+}
+
+ompl::base::GoalPtr TaskPlanner::poseGoal(const physics::PoseTarget& target) const {
+  auto goal = std::make_shared<geometric::PoseGoal>(query_.spaceInformation(), query_.ik(), target);
+  goal->seedNear(coordinatesNow());
+  return goal;
+}
+
+bool TaskPlanner::reachable(const ompl::base::Goal& goal) {
+  // PoseGoal samples by IK (valid and collision-free, or a state out of the bounds).
+  const auto& si = query_.spaceInformation();
+  query_.checker().setScene(now().data());
+  ompl::base::ScopedState<> sample(si->getStateSpace());
+  static_cast<const geometric::PoseGoal&>(goal).sampleGoal(sample.get());
+  return si->satisfiesBounds(sample.get());
+}
+
+std::optional<geometric::CoordinatePath> TaskPlanner::planTo(const ompl::base::GoalPtr& goal,
+                                                             const Ptc& ptc, double seconds) {
+  ++subQueries_;
+  query_.checker().setScene(now().data());
+  const double budget = std::min(seconds, settings_.subQueryTime);
+  return query_.plan(coordinatesNow(), goal, *motionPlanner_,
+                     ompl::base::plannerOrTerminationCondition(
+                         ptc, ompl::base::timedPlannerTerminationCondition(budget)),
+                     true);
+}
+
+bool TaskPlanner::execute(const geometric::CoordinatePath& path, physics::GripperAction action,
+                          int object) {
+  std::vector<std::vector<double>> joints = query_.jointValues(path);
+  joints.erase(joints.begin());  // where the arm already is
+  physics::TrackingSettings tracking;
+  tracking.speed = settings_.speed;
+  physics::TrackedPath tracked = physics::trackJointPath(context_, now(), joints, tracking);
+  if (!tracked.controls.empty()) {
+    tracked.controls.front().action = action;
+    tracked.controls.front().object = object;
+  }
+  physics::append(plan_, tracked);
+  return tracked.complete;
+}
+
+bool TaskPlanner::holdStill(physics::GripperAction action, unsigned steps) {
+  const auto& si = *context_.spaceInformation();
+  ompl::base::State* from = si.allocState();
+  ompl::base::State* to = si.allocState();
+  ompl::control::Control* control = si.allocControl();
+  si.getControlSpace()->nullControl(control);
+  std::copy(now().begin(), now().end(), physics::WorldStateSpace::values(from));
+  physics::TrackedPath still;
+  still.states.push_back(now());
+  physics::ControlStep step{std::vector<double>(context_.propagator().mapping().size(), 0.0), steps,
+                            action, -1};
+  const physics::WorldValidityChecker& checker = context_.validityChecker();
+  for (unsigned s = 0; s < steps && still.violation == physics::Violation::None; ++s) {
+    context_.propagator().propagate(from, control, si.getPropagationStepSize(), to);
+    std::swap(from, to);
+    const double* values = physics::WorldStateSpace::values(from);
+    still.violation = checker.check(values, checker.targetStart(), context_.world().held());
+    if (still.violation != physics::Violation::None) step.steps = s + 1;
+  }
+  const double* values = physics::WorldStateSpace::values(from);
+  still.controls.push_back(step);
+  still.states.emplace_back(values, values + context_.layout().stateSize());
+  still.complete = still.violation == physics::Violation::None;
+  si.freeState(from);
+  si.freeState(to);
+  si.freeControl(control);
+  physics::append(plan_, still);
+  return still.complete;
+}
+
+std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
+  // Where would the arm go if no movable object were in the way?
+  physics::SceneChecker& checker = query_.checker();
+  checker.setObstacles(physics::Obstacles::FixedOnly, unmovable_);
+  const std::optional<geometric::CoordinatePath> free =
+      planTo(query_.problemGoal(false, coordinatesNow()), ptc);
+  checker.setObstacles(physics::Obstacles::Everything);
+  if (!free) return std::nullopt;
+
+  const physics::WorldLayout& layout = context_.layout();
+  corridors_.emplace_back();
+  std::vector<Eigen::Vector2d>& corridor = corridors_.back();
+  const ompl::base::StateSpacePtr& space = query_.spaceInformation()->getStateSpace();
+  ompl::base::ScopedState<> a(space), b(space), between(space);
+  auto* values = between->as<ompl::base::RealVectorStateSpace::StateType>()->values;
+  std::optional<std::size_t> first;
+  for (std::size_t i = 0; i + 1 < free->size(); ++i) {
+    std::copy((*free)[i].begin(), (*free)[i].end(),
+              a->as<ompl::base::RealVectorStateSpace::StateType>()->values);
+    std::copy((*free)[i + 1].begin(), (*free)[i + 1].end(),
+              b->as<ompl::base::RealVectorStateSpace::StateType>()->values);
+    const unsigned pieces = std::max(1u, space->validSegmentCount(a.get(), b.get()));
+    for (unsigned k = 0; k <= pieces; ++k) {
+      space->interpolate(a.get(), b.get(), static_cast<double>(k) / pieces, between.get());
+      const std::vector<double> state = checker.stateAt(values);
+      const Eigen::Vector3d tcp = layout.goalLinkPosition(state.data());
+      corridor.emplace_back(tcp.x(), tcp.y());
+      if (first) continue;
+      for (int body : checker.touchesAt(values).bodies)
+        if (layout.bodies[static_cast<std::size_t>(body)].role == physics::BodyRole::Movable &&
+            !unmovable_.count(static_cast<std::size_t>(body))) {
+          first = static_cast<std::size_t>(body);
+          break;
+        }
+    }
+  }
+  if (first) return first;
+  // Nothing on the way: what fills the space between the fingers at the pre-grasp?
+  const auto blocker =
+      context_.goal().freeSpaceBlocker(checker.stateAt(free->back().data()).data());
+  if (!blocker) clearPath_ = free;  // the way is clear after all (the direct try was short)
+  return blocker;
+}
+
+bool TaskPlanner::grasp(std::size_t object, const Ptc& ptc) {
+  const physics::WorldLayout& layout = context_.layout();
+  Eigen::AlignedBox3d box;
+  const Eigen::Isometry3d bodyPose =
+      layout.linkPose(now().data(), object) * layout.bodies[object].linkInBody.inverse();
+  for (const physics::ShapeInfo& shape : layout.shapes)
+    if (shape.body == static_cast<int>(object))
+      box.extend(core::boundingBox(shape.shape, bodyPose * shape.pose));
+  // From above: the gripper's origin over the top's centre, its approach axis down.
+  Eigen::Isometry3d gripper = Eigen::Isometry3d::Identity();
+  gripper.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  gripper.translation() =
+      Eigen::Vector3d(box.center().x(), box.center().y(), box.max().z() + settings_.graspGap);
+  physics::PoseTarget target = pose(gripper, 0.005);
+  target.angleTolerance = 0.1;
+  setObjectMargin(object);
+  const auto path = planTo(poseGoal(target), ptc);
+  if (!path) {
+    OMPL_DEBUG("%s: no path to grasp %s", getName().c_str(), layout.bodies[object].name.c_str());
+    return false;
+  }
+  if (!execute(*path, physics::GripperAction::None, -1)) {
+    OMPL_DEBUG("%s: reaching %s: %s", getName().c_str(), layout.bodies[object].name.c_str(),
+               physics::toString(plan_.violation));
+    return false;
+  }
+
+  physics::World& world = context_.world();
+  world.writeState(now().data());
+  if (!world.attach(object, kGraspReach)) {
+    OMPL_DEBUG("%s: %s out of the gripper's reach", getName().c_str(),
+               layout.bodies[object].name.c_str());
+    return false;
+  }
+  const std::vector<double> q = query_.joints().jointValues(coordinatesNow().data());
+  const Eigen::Isometry3d gripperNow = query_.joints().linkPose(q, query_.gripperLink());
+  query_.checker().hold(
+      physics::HeldObject{object, gripperNow.inverse() * layout.linkPose(now().data(), object)});
+  return true;
+}
+
+bool TaskPlanner::lift(std::size_t object) {
+  // Straight up off the table: standing on it, the held object touches it, and no motion
+  // planner starts from a state in contact.
+  const std::vector<double> from = coordinatesNow();
+  const std::vector<double> q = query_.joints().jointValues(from.data());
+  Eigen::Isometry3d up = query_.joints().linkPose(q, query_.gripperLink());
+  up.translation().z() += kLiftHeight;
+  const auto to = query_.ik().solve(pose(up, 0.003), from);
+  if (!to) return false;
+  ompl::base::ScopedState<> lifted(query_.spaceInformation()->getStateSpace());
+  std::copy(to->begin(), to->end(),
+            lifted->as<ompl::base::RealVectorStateSpace::StateType>()->values);
+  if (!query_.spaceInformation()->isValid(lifted.get())) return false;
+  return execute({from, *to}, physics::GripperAction::Grasp, static_cast<int>(object));
+}
+
+bool TaskPlanner::carryAway(std::size_t object, const Ptc& ptc) {
+  if (!lift(object)) {
+    OMPL_DEBUG("%s: cannot lift %s", getName().c_str(),
+               context_.layout().bodies[object].name.c_str());
+    context_.world().release();
+    query_.checker().hold(std::nullopt);
+    return false;
+  }
+  const physics::WorldLayout& layout = context_.layout();
+  const Eigen::Isometry3d held = layout.linkPose(now().data(), object);
+  const Eigen::Isometry3d inGripper = query_.checker().held()->inGripper;
+  std::vector<Eigen::Vector2d> places =
+      samplePlacements(placementRules(object), footprint(object).radius, kPlacementDraws, rng_);
+  // Farthest from the pre-grasp first: an object put down near it tends to be in the way of
+  // the next path there.
+  const Eigen::Vector2d goal = context_.goal().position().head<2>();
+  std::stable_sort(places.begin(), places.end(),
+                   [&goal](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+                     return (a - goal).norm() > (b - goal).norm();
+                   });
+  OMPL_DEBUG("%s: %zu free places for %s", getName().c_str(), places.size(),
+             layout.bodies[object].name.c_str());
+  for (std::size_t i = 0; i < std::min(places.size(), kPlacementsTried) && !ptc(); ++i) {
+    Eigen::Isometry3d placed = held;  // upright as it stood, on the table again
+    placed.translation() = Eigen::Vector3d(places[i].x(), places[i].y(),
+                                           context_.startState()[object * 13 + 2] + kDropHeight);
+    placed.translation().z() +=
+        held.translation().z() - physics::WorldLayout::position(now().data(), object).z();
+    const physics::PoseTarget target = pose(placed * inGripper.inverse(), 0.005);
+    const ompl::base::GoalPtr placeGoal = poseGoal(target);
+    if (!reachable(*placeGoal)) continue;  // out of the arm's reach: not worth a sub-query
+    const auto path = planTo(placeGoal, ptc);
+    if (!path) continue;
+    const bool carried = execute(*path, physics::GripperAction::None, -1);
+    context_.world().release();
+    query_.checker().hold(std::nullopt);
+    return carried && holdStill(physics::GripperAction::Release, kSettleSteps);
+  }
+  context_.world().release();
+  query_.checker().hold(std::nullopt);
+  holdStill(physics::GripperAction::Release, kSettleSteps);  // it drops back where it stood
+  return false;
+}
+
+bool TaskPlanner::moveAway(std::size_t object, const Ptc& ptc) {
+  // An object that could not be moved is passed over for the next one on the way, until
+  // some other move changes the scene.
+  if (!grasp(object, ptc) || !carryAway(object, ptc)) {
+    unmovable_.insert(object);
+    return false;
+  }
+  unmovable_.clear();
+  ++moves_;
+  return true;
+}
+
+Footprint TaskPlanner::footprint(std::size_t body) const {
+  const physics::WorldLayout& layout = context_.layout();
+  Eigen::AlignedBox3d box;
+  for (const physics::ShapeInfo& shape : layout.shapes)
+    if (shape.body == static_cast<int>(body))
+      box.extend(core::boundingBox(shape.shape, shape.pose));
+  const Eigen::Vector3d p = physics::WorldLayout::position(now().data(), body);
+  return {{p.x(), p.y()}, 0.5 * std::max(box.sizes().x(), box.sizes().y())};
+}
+
+PlacementRules TaskPlanner::placementRules(std::size_t moved) const {
+  const core::Problem& problem = context_.problem();
+  PlacementRules rules;
+  if (const std::optional<int> support = problem.supportObject()) {
+    const Eigen::AlignedBox3d table = core::boundsAtHome(problem.objects.at(*support));
+    const Eigen::AlignedBox3d& reach = problem.workspace;
+    const double margin = footprint(moved).radius + 0.03;
+    rules.area =
+        Eigen::AlignedBox2d(Eigen::Vector2d(std::max(table.min().x(), reach.min().x()) + margin,
+                                            std::max(table.min().y(), reach.min().y()) + margin),
+                            Eigen::Vector2d(std::min(table.max().x(), reach.max().x()) - margin,
+                                            std::min(table.max().y(), reach.max().y()) - margin));
+  }
+  const physics::WorldLayout& layout = context_.layout();
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    if (b == moved || layout.bodies[b].role == physics::BodyRole::Robot) continue;
+    Footprint other = footprint(b);
+    if (layout.bodies[b].role == physics::BodyRole::Target) other.radius += 0.05;
+    rules.occupied.push_back(other);
+  }
+  // Every way the gripper was found to need so far: an object put on one would be in the way
+  // again.
+  rules.corridors = corridors_;
+  const Eigen::Vector3d goal = context_.goal().position();
+  rules.corridors.push_back({Eigen::Vector2d(goal.x(), goal.y())});
+  return rules;
+}
+
+void TaskPlanner::setObjectMargin(std::optional<std::size_t> except) {
+  (void)except;  // the margin applies to every movable object; see docs/planners.md
+  if (!settings_.uncertainty) return;
+  double sigma = 0.0;
+  for (const core::ObjectInstance& object : context_.problem().objects)
+    sigma = std::max({sigma, object.uncertainty.x, object.uncertainty.y});
+  query_.checker().setObjectMargin(settings_.sigmas * sigma);
+}
+
+ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
+  checkValidity();
+  clear();
+  plan_.states.push_back(context_.startState());
+  query_.setClearance(settings_.clearance);
+  context_.world().release();
+  bool reached = false;
+  for (int move = 0; move <= settings_.maxMoves && !ptc(); ++move) {
+    setObjectMargin(std::nullopt);
+    // An object between the fingers at the pre-grasp: no path can reach the goal, so do not
+    // spend a sub-query finding out.
+    const bool blocked = context_.goal().freeSpaceBlocker(now().data()).has_value();
+    // A short try: when the way is clear RRTConnect finds it in a fraction of a second, and
+    // the obstruction query below finds the way otherwise.
+    constexpr double kDirectTry = 1.0;  // s
+    if (const auto path =
+            blocked ? std::nullopt
+                    : planTo(query_.problemGoal(true, coordinatesNow()), ptc, kDirectTry)) {
+      reached =
+          execute(*path, physics::GripperAction::None, -1) && context_.goal().reached(now().data());
+      break;
+    }
+    if (move == settings_.maxMoves) break;
+    clearPath_.reset();
+    const std::optional<std::size_t> object = obstruction(ptc);
+    if (clearPath_) {
+      reached = execute(*clearPath_, physics::GripperAction::None, -1) &&
+                context_.goal().reached(now().data());
+      break;
+    }
+    if (object)
+      OMPL_DEBUG("%s: moving %s out of the way", getName().c_str(),
+                 context_.layout().bodies[*object].name.c_str());
+    if (!object) {
+      OMPL_DEBUG("%s: nothing found to move (no path even without movable objects)",
+                 getName().c_str());
+      break;
+    }
+    // A move that fails without breaking a rule (no reach, no free place reachable) leaves
+    // the scene as it was, or the object put down where it was lifted: try again from there.
+    if (!moveAway(*object, ptc) && plan_.violation != physics::Violation::None) break;
+  }
+  context_.world().release();
+  if (plan_.controls.empty()) return ompl::base::PlannerStatus::TIMEOUT;
+  const double distance = reached ? 0.0 : context_.goal().distance(now().data());
+  pdef_->addSolutionPath(physics::controlPath(plan_, context_.spaceInformation()), !reached,
+                         distance, getName());
+  return reached ? ompl::base::PlannerStatus::EXACT_SOLUTION
+                 : ompl::base::PlannerStatus::APPROXIMATE_SOLUTION;
+}
+
+}  // namespace kautham::planners::tmp
