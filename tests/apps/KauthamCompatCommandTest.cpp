@@ -122,6 +122,11 @@ TEST_F(StartSceneTest, TheUr5ProblemsStartSceneShowsInABrowser) {
   const std::string verdict = startSceneVerdict(folder, "problems/ur5_cans.xml");
   EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=10 shapes=12 meshes=7 moved=none", 0), 0u)
       << verdict;
+  // The UR5 drawn by its 7 DAE visual meshes, each capped at 3000 triangles.
+  EXPECT_NE(verdict.find(" visuals=7 "), std::string::npos) << verdict;
+  const std::string page = test::readFile(folder / "start.html");
+  EXPECT_NE(page.find("\"file\":\"upperarm.dae\""), std::string::npos);
+  EXPECT_LT(page.size(), 2'000'000u);  // three.js and the plan, visuals included
 }
 
 }  // namespace
