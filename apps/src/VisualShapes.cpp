@@ -1,9 +1,13 @@
 #include "VisualShapes.h"
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <optional>
+#include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include "ShapeJson.h"
 #include "kautham/core/Log.h"
