@@ -13,6 +13,7 @@
 #include "kautham/core/ApproachCorridor.h"
 #include "kautham/core/Log.h"
 #include "kautham/core/ProblemLoader.h"
+#include "kautham/physics/SelfOverlap.h"
 
 namespace kautham::apps {
 
@@ -76,6 +77,22 @@ void warnMasslessLinks(const core::RobotInstance& robot) {
         "{}: robot links without <inertial> (their bodies get 0.1 kg, which sets how hard they "
         "push): {}",
         robot.urdf.string(), fmt::join(massless, ", ")));
+}
+
+/// Deeper than this, two of the robot's own links overlap for real, not by a modelling sliver.
+constexpr double kSelfOverlapDepth = 0.002;  // m
+
+/// The robot's own links interpenetrating at a query's start. Planning has no self-collision
+/// (the physics never collides a robot with itself), so it is a warning: the real robot could
+/// not be there, and a plan may pass through itself the same way.
+void warnSelfOverlaps(const core::Problem& problem, const core::Query& query) {
+  for (const physics::LinkOverlap& o : physics::robotSelfOverlaps(
+           problem.robot, problem.initialJointValues(query), kSelfOverlapDepth))
+    core::warning(fmt::format(
+        "{}: query '{}': robot links '{}' and '{}' interpenetrate at the start ({:.1f} mm); "
+        "planning does not collide the robot with itself, so a plan may pass through itself "
+        "too",
+        query.where.str(), query.name, o.first, o.second, 1000.0 * o.depth));
 }
 
 /// Every mesh of the robot and the objects: how big it is, and how it collides.
@@ -223,6 +240,7 @@ int runCheck(const CheckOptions& options) {
   fmt::print("planner     {}\n", request.planner);
   for (std::size_t q = 0; q < problem.queries.size(); ++q) {
     printGoalLinkStart(problem, problem.queries[q]);
+    warnSelfOverlaps(problem, problem.queries[q]);
     const auto context = makeCheckedContext(problem, q, request);  // throws if the start is bad
     const double* start = context->startState().data();
     const Eigen::Vector3d goal = context->goal().position();

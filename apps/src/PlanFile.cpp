@@ -7,6 +7,8 @@
 #include <fmt/format.h>
 #include <ompl/config.h>
 
+#include "ShapeJson.h"
+#include "VisualShapes.h"
 #include "kautham/core/Version.h"
 #include "kautham/physics/OdeLibrary.h"
 
@@ -64,47 +66,15 @@ json bodiesJson(const WorldLayout& layout) {
   return bodies;
 }
 
-json shapeJson(const core::Shape& shape) {
-  struct Describe {
-    json operator()(const core::Box& b) const {
-      return {{"type", "box"}, {"size", {b.size.x(), b.size.y(), b.size.z()}}};
-    }
-    json operator()(const core::Cylinder& c) const {
-      return {{"type", "cylinder"}, {"radius", c.radius}, {"length", c.length}};
-    }
-    json operator()(const core::Sphere& s) const {
-      return {{"type", "sphere"}, {"radius", s.radius}};
-    }
-    /// The mesh as loaded (not its hull), flat arrays, coordinates rounded to 0.1 mm: a viewer
-    /// draws it, and it must stay small.
-    json operator()(const core::Mesh& m) const {
-      std::vector<double> vertices;
-      vertices.reserve(3 * m.vertices().size());
-      for (const Eigen::Vector3d& v : m.vertices())
-        for (int k = 0; k < 3; ++k) vertices.push_back(std::round(v[k] * 1e4) / 1e4);
-      std::vector<int> triangles;
-      triangles.reserve(3 * m.triangles().size());
-      for (const auto& t : m.triangles()) triangles.insert(triangles.end(), t.begin(), t.end());
-      return {{"type", "mesh"},
-              {"file", m.data->source.filename().string()},
-              {"vertices", vertices},
-              {"triangles", triangles}};
-    }
-  };
-  return std::visit(Describe{}, shape);
-}
-
 /// Every collision shape, so a viewer can draw the scene from the plan file alone.
 json shapesJson(const WorldLayout& layout) {
   json shapes = json::array();
   for (const physics::ShapeInfo& s : layout.shapes) {
     json entry = shapeJson(s.shape);
-    const Eigen::Quaterniond q(s.pose.linear());
-    const Eigen::Vector3d p = s.pose.translation();
     entry["owner"] = s.owner;
     entry["role"] = s.role;
     entry["body"] = s.body >= 0 ? json(s.body) : json(nullptr);
-    entry["pose"] = {p.x(), p.y(), p.z(), q.w(), q.x(), q.y(), q.z()};
+    entry["pose"] = poseJson(s.pose);
     shapes.push_back(entry);
   }
   return shapes;
@@ -187,6 +157,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"controls", controlsJson(outcome, stepSize, layout)},
       {"bodies", bodiesJson(layout)},
       {"shapes", shapesJson(layout)},
+      {"visuals", visualsJson(context.problem(), layout)},
       {"frames", trajectoryJson(layout, replay)},
       {"goal",
        {{"position", {goal.x(), goal.y(), goal.z()}},

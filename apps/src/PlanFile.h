@@ -15,7 +15,8 @@ constexpr int kPlanFormatVersion = 2;  // 2: controls hold normalized "values" (
 
 /// The plan file: the problem, planner, parameters and seed that produced it, statistics,
 /// the controls with durations, every collision shape (static ones in the world, the others
-/// in their body's frame) and the pose of every body along the replayed plan.
+/// in their body's frame), the robot's visual geometry (VisualShapes.h) and the pose of every
+/// body along the replayed plan.
 /// Everything but the "timing" object is identical for identical runs.
 nlohmann::json planToJson(const physics::PlanningContext& context,
                           const planners::PlanRequest& request,

@@ -78,10 +78,11 @@ void checkMesh(const nlohmann::json& shape, const Fail& fail) {
                      count));
 }
 
-void checkShape(const nlohmann::json& shape, std::size_t index, std::size_t bodies,
-                const std::string& source) {
+/// A shape of the plan's "shapes" or "visuals" (`array`), both drawn the same way.
+void checkShape(const nlohmann::json& shape, const char* array, std::size_t index,
+                std::size_t bodies, const std::string& source) {
   const auto fail = [&](const std::string& what) {
-    throw ViewError(fmt::format("{}: shapes[{}] {}", source, index, what));
+    throw ViewError(fmt::format("{}: {}[{}] {}", source, array, index, what));
   };
   if (!shape.is_object()) fail("is not an object");
   const std::string type = shape.value("type", "");
@@ -148,7 +149,15 @@ void checkPlanForView(const nlohmann::json& plan, const std::string& source) {
       throw ViewError(fmt::format("{}: bodies[{}] has no \"name\"", source, i));
   const auto& shapes = plan["shapes"];
   if (shapes.empty()) throw ViewError(source + ": the plan has no shapes to show");
-  for (std::size_t i = 0; i < shapes.size(); ++i) checkShape(shapes[i], i, bodies.size(), source);
+  for (std::size_t i = 0; i < shapes.size(); ++i)
+    checkShape(shapes[i], "shapes", i, bodies.size(), source);
+  // Optional: what the robot looks like (plan files before visuals have none).
+  if (plan.contains("visuals")) {
+    const auto& visuals = plan["visuals"];
+    if (!visuals.is_array()) throw ViewError(source + ": the plan's \"visuals\" is not an array");
+    for (std::size_t i = 0; i < visuals.size(); ++i)
+      checkShape(visuals[i], "visuals", i, bodies.size(), source);
+  }
   const auto& frames = plan["frames"];
   if (frames.empty()) throw ViewError(source + ": the plan has no frames to show");
   for (std::size_t i = 0; i < frames.size(); ++i) {

@@ -10,6 +10,12 @@ std::optional<int> KinematicModel::findLink(const std::string& linkName) const {
   return std::nullopt;
 }
 
+int KinematicModel::rigidGroupTop(int link) const {
+  while (links[link].parentJoint >= 0 && !joints[links[link].parentJoint].isMovable())
+    link = joints[links[link].parentJoint].parentLink;
+  return link;
+}
+
 std::vector<int> KinematicModel::movableJoints() const {
   std::vector<int> movable;
   for (std::size_t i = 0; i < joints.size(); ++i)

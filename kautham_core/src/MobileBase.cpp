@@ -11,11 +11,14 @@ namespace kautham::core {
 namespace {
 
 // Carriages between the base joints carry no geometry; ODE still needs a mass for each moving
-// body, so they get a small one (robot bodies have no gravity: it loads only the motors).
-constexpr double kCarriageMass = 0.5;
-constexpr double kCarriageInertia = 0.005;
-constexpr double kTurnVelocity = 1.0;  ///< rad/s of base_X3 (Kautham gives none)
-constexpr double kTurnEffort = 100.0;  ///< N m
+// body (robot bodies have no gravity: it loads only the motors). Each gets the robot's mass:
+// ODE's iterative solver converges badly along a chain of bodies of very different masses, and
+// 0.5 kg carriages under Kautham's 25 kg sphere or 28 kg Tiago made the base joints' rates
+// jitter past 1.2 times their limit ("joint too fast" was 97 % of Tiago's rejected states).
+constexpr double kMinCarriageMass = 0.1;    // kg, for robots whose URDF gives no mass
+constexpr double kCarriageGyration = 0.01;  // m^2: inertia per kg (a 10 cm radius of gyration)
+constexpr double kTurnVelocity = 1.0;       ///< rad/s of base_X3 (Kautham gives none)
+constexpr double kTurnEffort = 100.0;       ///< N m
 
 const char* const kAxisNames[3] = {"X", "Y", "Z"};
 
@@ -171,6 +174,9 @@ std::set<std::string> addMobileBase(KinematicModel& model, const std::vector<Bas
   }
   if (joints.empty()) return absorbed;
 
+  double carriageMass = 0.0;
+  for (const Link& link : model.links) carriageMass += link.inertial.mass;
+  carriageMass = std::max(carriageMass, kMinCarriageMass);
   const int count = static_cast<int>(joints.size());
   shiftIndices(model, count);
   // Links 0..count-1: the static mount, then one carriage per joint but the last, whose child is
@@ -186,8 +192,8 @@ std::set<std::string> addMobileBase(KinematicModel& model, const std::vector<Bas
       Link& carriage = links[static_cast<std::size_t>(i)];
       carriage.name = "mobile_" + joints[static_cast<std::size_t>(i) - 1].name;
       carriage.parentJoint = i - 1;
-      carriage.inertial.mass = kCarriageMass;
-      carriage.inertial.inertia = Eigen::Matrix3d::Identity() * kCarriageInertia;
+      carriage.inertial.mass = carriageMass;
+      carriage.inertial.inertia = Eigen::Matrix3d::Identity() * carriageMass * kCarriageGyration;
     }
   }
   model.links[static_cast<std::size_t>(model.rootLink - count)].parentJoint = count - 1;

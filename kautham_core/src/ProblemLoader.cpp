@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <utility>
@@ -12,6 +14,7 @@
 #include "XmlReader.h"
 #include "kautham/core/Log.h"
 #include "kautham/core/OctomapEnvironment.h"
+#include "kautham/core/SoftContact.h"
 #include "kautham/core/UrdfLoader.h"
 
 namespace kautham::core {
@@ -548,13 +551,52 @@ class ProblemReader {
       xml_.fail(parameters, "<Parameters> needs <Name>PlannerName</Name>");
     problem_.planner.name = xml_.elementText(*name);
     problem_.planner.nameWhere = xml_.at(*name);
+    std::optional<SourceLocation> kauthamContact;  // where Kautham's ERP or CFM was given
     for (const XMLElement* p = parameters.FirstChildElement("Parameter"); p;
          p = p->NextSiblingElement("Parameter")) {
       PlannerParameter parameter{xml_.requiredText(*p, "name"), xml_.elementText(*p), xml_.at(*p)};
       if (parameter.value.empty()) xml_.fail(*p, "parameter '" + parameter.name + "' has no value");
       if (!applyKauthamPhysicsParameter(parameter, problem_.physics, xml_, *p))
         problem_.planner.parameters.push_back(parameter);
+      else if (parameter.name != "Max Contacts" && !kauthamContact)
+        kauthamContact = parameter.where;
     }
+    if (kauthamContact) readKauthamContact(*kauthamContact);
+  }
+
+  /// The step Kautham simulated with: OMPL's OpenDE propagator, which Kautham's ODE planners
+  /// use, makes one ODE step of the whole PropagationStepSize (Kautham's default 0.05 s).
+  double kauthamStep() const {
+    for (const PlannerParameter& p : problem_.planner.parameters)
+      if (p.name == "PropagationStepSize" || p.name == "propagation_step_size") {
+        char* end = nullptr;
+        const double value = std::strtod(p.value.c_str(), &end);
+        if (end != p.value.c_str() && value > 0.0) return value;
+      }
+    return 0.05;
+  }
+
+  /// Kautham's 'Error Reduction Parameter' and 'Constraint Force Mixing' are ODE's per-contact
+  /// soft_erp and soft_cfm at Kautham's step, so this program reads them as the contact spring
+  /// and damper they make there, at its own (smaller) physics step: objects then rest as deep in
+  /// the ground and push as softly as in Kautham (SoftContact.h).
+  void readKauthamContact(const SourceLocation& where) {
+    PhysicsSettings& physics = problem_.physics;
+    const SoftContact given{physics.erp, physics.cfm};
+    const double step = kauthamStep();
+    if (!(given.cfm > 0.0) || std::abs(step - physics.stepSize) < 1e-12) return;
+    const SoftContact here = softContactAtStep(given, step, physics.stepSize);
+    std::ostringstream message;
+    message.precision(3);
+    message << where.str() << ": Kautham's ERP " << given.erp << " and CFM " << given.cfm
+            << " are for its ODE steps of " << step
+            << " s (PropagationStepSize); the same contact spring and damper ("
+            << contactSpring(given, step) << " N/m, " << contactDamper(given)
+            << " N s/m per contact point) at this program's " << physics.stepSize
+            << " s steps: ERP " << here.erp << ", CFM " << here.cfm;
+    warning(message.str());
+    physics.erp = here.erp;
+    physics.cfm = here.cfm;
   }
 
   void readQuery(const XMLElement& q) {

@@ -117,7 +117,75 @@ class UrdfConverter {
       if (const auto& collision = source.collision_array[c]; collision && collision->geometry)
         link.collisions.push_back({convertShape(*collision->geometry, source.name, c),
                                    toIsometry(collision->origin, scale_)});
+    link.visuals = convertVisuals(source);
     return link;
+  }
+
+  /// The link's <visual>s, for pictures. A visual mesh that cannot be found costs a warning, not
+  /// the problem: the viewer then draws the link's collision shapes instead (all of them, so a
+  /// link is never half drawn).
+  std::vector<VisualShape> convertVisuals(const urdf::Link& source) const {
+    std::vector<VisualShape> visuals;
+    for (std::size_t v = 0; v < source.visual_array.size(); ++v) {
+      const auto& visual = source.visual_array[v];
+      if (!visual || !visual->geometry) continue;
+      std::optional<VisualShape> shape = convertVisual(*visual, source.name, v);
+      if (!shape) return {};
+      visuals.push_back(std::move(*shape));
+    }
+    return visuals;
+  }
+
+  std::optional<VisualShape> convertVisual(const urdf::Visual& visual, const std::string& linkName,
+                                           std::size_t index) const {
+    VisualShape shape;
+    shape.origin = toIsometry(visual.origin, scale_);
+    // urdfdom cannot tell a material without <color> from black: that default is no colour.
+    if (const auto& m = visual.material; m && (m->color.r || m->color.g || m->color.b))
+      shape.colour = Eigen::Vector4d(m->color.r, m->color.g, m->color.b, m->color.a);
+    const urdf::Geometry& g = *visual.geometry;
+    switch (g.type) {
+      case urdf::Geometry::BOX: {
+        const urdf::Vector3& d = static_cast<const urdf::Box&>(g).dim;
+        shape.geometry = Box{scale_ * Eigen::Vector3d(d.x, d.y, d.z)};
+        return shape;
+      }
+      case urdf::Geometry::CYLINDER: {
+        const auto& c = static_cast<const urdf::Cylinder&>(g);
+        shape.geometry = Cylinder{scale_ * c.radius, scale_ * c.length};
+        return shape;
+      }
+      case urdf::Geometry::SPHERE:
+        shape.geometry = Sphere{scale_ * static_cast<const urdf::Sphere&>(g).radius};
+        return shape;
+      case urdf::Geometry::MESH:
+        if (std::optional<MeshFile> file =
+                visualMesh(static_cast<const urdf::Mesh&>(g), linkName, index)) {
+          shape.geometry = std::move(*file);
+          return shape;
+        }
+        return std::nullopt;
+    }
+    return std::nullopt;
+  }
+
+  std::optional<MeshFile> visualMesh(const urdf::Mesh& mesh, const std::string& linkName,
+                                     std::size_t index) const {
+    const SourceLocation where{xml_.file(), meshLine(linkName, "visual", index)};
+    const std::string prefix = "link '" + linkName + "': visual mesh '" + mesh.filename + "'";
+    std::string looked;
+    std::filesystem::path path;
+    try {
+      path = resolveMesh(mesh.filename, where, prefix, looked);
+    } catch (const InputError& e) {
+      looked = e.what();
+    }
+    if (path.empty()) {
+      warning(where.file.string() + ":" + std::to_string(where.line) + ": " + prefix + ": " +
+              looked + "; pictures show the link's collision shapes");
+      return std::nullopt;
+    }
+    return MeshFile{path, scale_ * Eigen::Vector3d(mesh.scale.x, mesh.scale.y, mesh.scale.z)};
   }
 
   Shape convertShape(const urdf::Geometry& geometry, const std::string& linkName,
@@ -141,15 +209,15 @@ class UrdfConverter {
     fail("link", linkName, "link '" + linkName + "': unknown collision geometry");
   }
 
-  /// Line of the <mesh> element of the link's collisionIndex-th <collision> (else the link's).
-  int meshLine(const std::string& linkName, std::size_t collisionIndex) const {
+  /// Line of the <mesh> element of the link's index-th <collision> or <visual> (`tag`), else the
+  /// link's line.
+  int meshLine(const std::string& linkName, const char* tag, std::size_t index) const {
     for (auto* link = robot_.FirstChildElement("link"); link;
          link = link->NextSiblingElement("link")) {
       if (const char* n = link->Attribute("name"); !n || linkName != n) continue;
-      auto* collision = link->FirstChildElement("collision");
-      for (std::size_t i = 0; collision && i < collisionIndex; ++i)
-        collision = collision->NextSiblingElement("collision");
-      const auto* geometry = collision ? collision->FirstChildElement("geometry") : nullptr;
+      auto* element = link->FirstChildElement(tag);
+      for (std::size_t i = 0; element && i < index; ++i) element = element->NextSiblingElement(tag);
+      const auto* geometry = element ? element->FirstChildElement("geometry") : nullptr;
       const auto* mesh = geometry ? geometry->FirstChildElement("mesh") : nullptr;
       return mesh ? mesh->GetLineNum() : link->GetLineNum();
     }
@@ -197,7 +265,7 @@ class UrdfConverter {
   /// convex hull. A mesh that is not found is recorded, and all are reported together.
   Shape convertMesh(const urdf::Mesh& source, const std::string& linkName,
                     std::size_t collisionIndex) {
-    const SourceLocation where{xml_.file(), meshLine(linkName, collisionIndex)};
+    const SourceLocation where{xml_.file(), meshLine(linkName, "collision", collisionIndex)};
     const std::string& name = source.filename;
     const std::string prefix = "link '" + linkName + "': mesh '" + name + "'";
     std::string looked;

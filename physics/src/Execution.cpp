@@ -72,6 +72,7 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       // The target's "has not moved" check measures from where it really starts.
       sampledChecker = std::make_unique<WorldValidityChecker>(
           si, borrowedLayout(context), context.problem(), result.startState.data());
+      sampledChecker->allowRestingSink(context.validityChecker().restingSink());
       if (startIsPossible(context, *sampledChecker, result.startState)) break;
       ++result.rejectedStarts;
     }

@@ -7,6 +7,8 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
+#include "kautham/physics/RestingSink.h"
+
 namespace kautham::physics {
 
 namespace {
@@ -72,6 +74,12 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   validity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data());
   knowledgeValidity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data(),
                                                               ValidityRules::KnowledgeOnly);
+  // Objects on soft contacts (Kautham's CFM) settle centimetres into the ground: no drop.
+  if (hasSoftContacts(*world_)) {
+    const std::vector<double> sink = restingSink(*world_, start_);
+    validity_->allowRestingSink(sink);
+    knowledgeValidity_->allowRestingSink(sink);
+  }
   si_->setStatePropagator(propagator_);
   si_->setStateValidityChecker(validity_);
   si_->setPropagationStepSize(settings.propagationStepSize);

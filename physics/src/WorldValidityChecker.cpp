@@ -1,6 +1,7 @@
 #include "kautham/physics/WorldValidityChecker.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <variant>
 
 #include "kautham/physics/WorldStateSpace.h"
@@ -56,6 +57,7 @@ WorldValidityChecker::WorldValidityChecker(const ompl::base::SpaceInformationPtr
   if (auto support = problem.supportObject())
     supportShapes_ = core::shapesAtHome(problem.objects[*support]);
   startHeights_.resize(layout_->bodies.size());
+  restingSink_.assign(layout_->bodies.size(), 0.0);
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
     startHeights_[b] = WorldLayout::position(startState, b).z();
     if (layout_->bodies[b].role == BodyRole::Target) targetBody_ = b;
@@ -149,13 +151,20 @@ Violation WorldValidityChecker::checkRobot(const double* state) const {
   return Violation::None;
 }
 
+void WorldValidityChecker::allowRestingSink(std::vector<double> sink) {
+  if (sink.size() != layout_->bodies.size())
+    throw std::invalid_argument("allowRestingSink: one depth per body expected");
+  restingSink_ = std::move(sink);
+}
+
 Violation WorldValidityChecker::checkObject(const double* state, std::size_t body) const {
   if (WorldLayout::linearVelocity(state, body).norm() > limits_.maxObjectSpeed)
     return Violation::ObjectTooFast;
   if (core::tiltAngle(WorldLayout::orientation(state, body)) > limits_.maxTilt)
     return Violation::ObjectTilted;
   const Eigen::Vector3d p = WorldLayout::position(state, body);
-  if (p.z() < startHeights_[body] - kDropTolerance) return Violation::ObjectOffSupport;
+  if (p.z() < startHeights_[body] - restingSink_[body] - kDropTolerance)
+    return Violation::ObjectOffSupport;
   if (!supportShapes_.empty() && !onSupport(p)) return Violation::ObjectOffSupport;
   return Violation::None;
 }

@@ -110,6 +110,67 @@ TEST(CheckWarnings, RobotLinksWithoutInertialAreNamed) {
       << run.output;
 }
 
+using SelfOverlapTest = test::TemporaryFolderTest;
+
+/// A two-joint arm whose lower link hangs down through its base (its end 12 cm below the top),
+/// while each link also overlaps the link it is jointed to (by design, never reported).
+const char* kFoldedArm = R"(<?xml version="1.0"?>
+<robot name="folded_arm">
+  <link name="base"><collision><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>
+  <link name="upper">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 0.05"/><geometry><box size="0.05 0.05 0.1"/></geometry></collision>
+  </link>
+  <link name="lower">
+    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><origin xyz="0 0 -0.12"/><geometry><box size="0.04 0.04 0.3"/></geometry></collision>
+  </link>
+  <joint name="turn" type="revolute">
+    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.1"/>
+    <axis xyz="0 0 1"/><limit lower="-1" upper="1" velocity="1" effort="10"/>
+  </joint>
+  <joint name="bend" type="revolute">
+    <parent link="upper"/><child link="lower"/><origin xyz="0 0 0.1"/>
+    <axis xyz="0 1 0"/><limit lower="-1" upper="1" velocity="1" effort="10"/>
+  </joint>
+</robot>
+)";
+
+const char* kFoldedProblem = R"(<?xml version="1.0"?>
+<Problem name="folded">
+  <Robot robot="folded_arm.urdf" scale="1"><Home X="0" Y="0" Z="0"/></Robot>
+  <Planner>
+    <Parameters><Name>KPIECE</Name></Parameters>
+    <Queries>
+      <Query>
+        <Init>0.5 0.5</Init>
+        <Goal>1.0 1.0</Goal>
+      </Query>
+    </Queries>
+  </Planner>
+</Problem>
+)";
+
+TEST_F(SelfOverlapTest, CheckWarnsAboutTheRobotsOwnLinksOverlappingAtTheStart) {
+  test::writeFile(folder / "folded_arm.urdf", kFoldedArm);
+  test::writeFile(folder / "folded.xml", kFoldedProblem);
+  const CommandRun run = kautham("check '" + (folder / "folded.xml").string() + "'");
+  ASSERT_EQ(run.exitCode, 0) << run.output;  // a warning: planning has no self-collision
+  EXPECT_NE(run.output.find("folded.xml:7: query 'query0': robot links 'base' and 'lower' "
+                            "interpenetrate at the start (120.0 mm)"),
+            std::string::npos)
+      << run.output;
+  // Jointed links touch by design: upper is jointed to both.
+  EXPECT_EQ(run.output.find("'upper'"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("\nok\n"), std::string::npos) << run.output;
+}
+
+TEST(CheckWarnings, ARobotClearOfItselfGetsNoOverlapWarning) {
+  const CommandRun run = kautham("check problems/pusher_cans_5.xml");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(run.output.find("interpenetrate at the start"), std::string::npos) << run.output;
+}
+
 TEST(PackagePathOption, IsReadAsNameEqualsDirAndCheckedEarly) {
   const CommandRun run = kautham(
       "check tests/data/kautham_compat/mimic_arm.xml --package-path "
@@ -140,6 +201,11 @@ TEST_F(StartSceneTest, TheUr5ProblemsStartSceneShowsInABrowser) {
   const std::string verdict = startSceneVerdict(folder, "problems/ur5_cans.xml");
   EXPECT_EQ(verdict.rfind("SELFTEST PASS bodies=10 shapes=12 meshes=7 moved=none", 0), 0u)
       << verdict;
+  // The UR5 drawn by its 7 DAE visual meshes, each capped at 3000 triangles.
+  EXPECT_NE(verdict.find(" visuals=7 "), std::string::npos) << verdict;
+  const std::string page = test::readFile(folder / "start.html");
+  EXPECT_NE(page.find("\"file\":\"upperarm.dae\""), std::string::npos);
+  EXPECT_LT(page.size(), 2'000'000u);  // three.js and the plan, visuals included
 }
 
 }  // namespace

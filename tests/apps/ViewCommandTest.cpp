@@ -133,7 +133,7 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   ASSERT_TRUE(std::regex_match(
       verdict, pass,
       std::regex("SELFTEST PASS bodies=(\\d+) shapes=(\\d+) meshes=(\\d+) moved=(\\S+):([0-9.]+) "
-                 "contacts=(\\d+) beliefs=(\\d+)")))
+                 "contacts=(\\d+) beliefs=(\\d+) visuals=(\\d+) visual_triangles=(\\d+)")))
       << verdict;
   EXPECT_EQ(pass[1], "9");
   EXPECT_EQ(pass[2], "10");
@@ -142,6 +142,7 @@ TEST_F(ViewCommandTest, DefaultPlanPassesTheSelfTestInHeadlessChromium) {
   EXPECT_GT(std::stod(pass[5]), 0.01) << verdict;
   EXPECT_GT(std::stoi(pass[6]), 0) << verdict;  // contact moments marked on the timeline
   EXPECT_EQ(pass[7], "0") << verdict;           // KPIECE computes no belief
+  EXPECT_EQ(pass[8], "0") << verdict;           // the pusher's URDF has no <visual>
 
   const fs::path screenshot = folder / "plan.png";
   const CommandRun shot =

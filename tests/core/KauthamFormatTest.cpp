@@ -460,8 +460,11 @@ TEST_F(KauthamVariant, KauthamParameterNamesAreAcceptedOrIgnored) {
   text = text.substr(0, begin) + parameters + text.substr(end);
   const Problem problem = load(text);
   EXPECT_EQ(problem.physics.maxContacts, 5);
-  EXPECT_DOUBLE_EQ(problem.physics.erp, 0.3);
-  EXPECT_DOUBLE_EQ(problem.physics.cfm, 0.001);
+  // Kautham's ERP 0.3 and CFM 0.001 at its 0.03 s steps (PropagationStepSize) are a spring of
+  // 0.3 / (0.03 * 0.001) = 10000 N/m and a damper of 0.7 / 0.001 = 700 N s/m; at 0.01 s steps
+  // the same contact is ERP 100 / 800, CFM 1 / 800.
+  EXPECT_NEAR(problem.physics.erp, 0.125, 1e-12);
+  EXPECT_NEAR(problem.physics.cfm, 0.00125, 1e-12);
   const planners::PlanRequest request = planners::makeRequest(problem, std::nullopt, {}, 1);
   EXPECT_EQ(request.planner, "KPIECE");
   EXPECT_DOUBLE_EQ(request.timeLimit(), 12.0);

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -13,6 +14,7 @@
 #include "kautham/core/ConvexHull.h"
 #include "kautham/core/Geometry.h"
 #include "kautham/core/MeshLoader.h"
+#include "kautham/core/MeshSimplify.h"
 #include "kautham/core/UrdfLoader.h"
 
 namespace kautham::core {
@@ -164,6 +166,43 @@ TEST(UrdfMesh, ProblemScaleAndMeshScaleMultiply) {
   EXPECT_NEAR(box.max().z(), 0.125, 1e-6);   // 0.125 * 2 * 0.5
   EXPECT_NEAR(box.max().x(), 0.0175, 1e-6);  // 0.035 * 0.5
   fs::remove_all(folder);
+}
+
+/// A UV sphere of radius 1 with `rings` x `segments` quads split into triangles.
+TriangleMesh uvSphere(int rings, int segments) {
+  TriangleMesh mesh;
+  for (int r = 0; r <= rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double theta = M_PI * r / rings, phi = 2 * M_PI * s / segments;
+      mesh.vertices.emplace_back(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                 std::cos(theta));
+    }
+  for (int r = 0; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const int a = r * segments + s, b = r * segments + (s + 1) % segments;
+      mesh.triangles.push_back({a, a + segments, b});
+      mesh.triangles.push_back({b, a + segments, b + segments});
+    }
+  return mesh;
+}
+
+TEST(MeshSimplify, CapsTheTrianglesAndKeepsTheShape) {
+  const TriangleMesh sphere = uvSphere(100, 200);  // 40000 triangles
+  const TriangleMesh small = simplifyMesh(sphere, 3000);
+  EXPECT_LE(small.triangles.size(), 3000u);
+  EXPECT_GT(small.triangles.size(), 1000u);  // the smallest cell that fits, not a coarse one
+  for (const Eigen::Vector3d& v : small.vertices) EXPECT_NEAR(v.norm(), 1.0, 0.1);
+  const Eigen::AlignedBox3d box = boundsOf(small.vertices);
+  EXPECT_NEAR(box.sizes().minCoeff(), 2.0, 0.2);
+  for (const auto& t : small.triangles)
+    for (int corner : t) EXPECT_LT(corner, static_cast<int>(small.vertices.size()));
+}
+
+TEST(MeshSimplify, LeavesAMeshWithinTheCapAsItIs) {
+  const TriangleMesh sphere = uvSphere(4, 8);
+  const TriangleMesh same = simplifyMesh(sphere, 3000);
+  EXPECT_EQ(same.triangles, sphere.triangles);
+  EXPECT_EQ(same.vertices.size(), sphere.vertices.size());
 }
 
 }  // namespace

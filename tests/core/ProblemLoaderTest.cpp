@@ -296,8 +296,11 @@ TEST_F(ProblemVariant, KauthamPhysicsParameterNamesSetThePhysicsBlock) {
                                        "      <Parameter name=\"Goal Bias\">");
   const Problem problem = load(text);
   EXPECT_EQ(problem.physics.maxContacts, 12);
-  EXPECT_DOUBLE_EQ(problem.physics.erp, 0.4);
-  EXPECT_DOUBLE_EQ(problem.physics.cfm, 1e-4);
+  // Kautham's values are for its steps of PropagationStepSize (0.05 s): the same spring
+  // (0.4 / (0.05 * 1e-4) = 80000 N/m) and damper (0.6 / 1e-4 = 6000 N s/m) at <Physics
+  // stepSize> 0.01 s are ERP 800 / 6800 and CFM 1 / 6800.
+  EXPECT_NEAR(problem.physics.erp, 800.0 / 6800.0, 1e-12);
+  EXPECT_NEAR(problem.physics.cfm, 1.0 / 6800.0, 1e-12);
   // They are physics, not planner parameters.
   EXPECT_EQ(problem.planner.parameters.size(), 5u);
   for (const PlannerParameter& p : problem.planner.parameters) {

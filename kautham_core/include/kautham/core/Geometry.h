@@ -3,6 +3,7 @@
 #include <array>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -47,6 +48,21 @@ using Shape = std::variant<Box, Cylinder, Sphere, Mesh>;
 struct CollisionShape {
   Shape shape;
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+};
+
+/// A mesh file that a URDF <visual> names: found, but read only by what draws it (the viewer),
+/// since planning never needs visual meshes and they can be large (the UR5's DAE files: 6.5 MB).
+struct MeshFile {
+  std::filesystem::path file;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();  ///< per axis, the model's scale included
+};
+
+/// What a link looks like (URDF <visual>), placed in the link's frame; drawn instead of the
+/// collision shapes when a model has it.
+struct VisualShape {
+  std::variant<Box, Cylinder, Sphere, MeshFile> geometry;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();
+  std::optional<Eigen::Vector4d> colour;  ///< the <material>'s rgba, when it gives one
 };
 
 /// Axis-aligned bounding box of a shape placed at `pose` in the world.

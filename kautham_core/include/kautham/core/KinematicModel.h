@@ -22,7 +22,8 @@ struct Link {
   std::string name;
   Inertial inertial;
   std::vector<CollisionShape> collisions;
-  int parentJoint = -1;  ///< index into KinematicModel::joints, -1 for the root
+  std::vector<VisualShape> visuals;  ///< for pictures only; empty when the URDF gives none
+  int parentJoint = -1;              ///< index into KinematicModel::joints, -1 for the root
   std::vector<int> childJoints;
 };
 
@@ -60,6 +61,9 @@ class KinematicModel {
   int rootLink = 0;
 
   std::optional<int> findLink(const std::string& linkName) const;
+  /// The top of the links that `link` is joined to by fixed joints (the root, or a link whose
+  /// parent joint moves): they move as one rigid group, one body in the physics.
+  int rigidGroupTop(int link) const;
   /// Joints that move (not fixed), in the order of `joints`: the model's degrees of freedom.
   std::vector<int> movableJoints() const;
   /// World pose of every link for the given values of the movable joints.

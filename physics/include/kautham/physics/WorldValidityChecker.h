@@ -58,6 +58,10 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// checks: carried, it leaves the table and turns with the gripper by design.
   Violation check(const double* state, const Eigen::Vector3d& targetReference,
                   std::optional<std::size_t> held) const;
+  /// Per body, how deep it sinks when resting at the start (RestingSink.h): soft contacts let
+  /// objects settle into the ground, which is no drop. Zero for every body until set.
+  void allowRestingSink(std::vector<double> sink);
+  const std::vector<double>& restingSink() const { return restingSink_; }
   /// Where the target stands at the start of the query.
   const Eigen::Vector3d& targetStart() const { return targetStart_; }
   std::optional<std::size_t> targetBody() const { return targetBody_; }
@@ -80,6 +84,7 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// over one of them (boxes are rectangles turned with their yaw, the rest discs).
   std::vector<core::CollisionShape> supportShapes_;
   std::vector<double> startHeights_;       ///< per body: height of its centre at the start
+  std::vector<double> restingSink_;        ///< per body: see allowRestingSink()
   std::optional<std::size_t> targetBody_;  ///< none in Kautham files without roles
   Eigen::Vector3d targetStart_;
   mutable std::array<std::atomic<std::uint64_t>, kViolationKinds> rejected_{};

@@ -1,0 +1,139 @@
+#include "VisualShapes.h"
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "ShapeJson.h"
+#include "kautham/core/Log.h"
+#include "kautham/core/MeshSimplify.h"
+
+namespace kautham::apps {
+
+namespace {
+
+using nlohmann::json;
+
+/// Where a link is drawn: on a body of the layout (or static), placed in its frame.
+struct LinkPlacement {
+  int body = -1;  ///< -1: static, `pose` is in the world
+  std::string owner;
+  Eigen::Isometry3d pose;
+};
+
+std::optional<int> bodyNamed(const physics::WorldLayout& layout, const std::string& name) {
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+    if (layout.bodies[b].name == name) return static_cast<int>(b);
+  return std::nullopt;
+}
+
+/// Links are placed from the zero configuration: within a group, fixed joints keep the
+/// relative poses whatever the joints do; the static group stays where the world built it.
+std::optional<LinkPlacement> placeLink(const core::RobotInstance& robot,
+                                       const physics::WorldLayout& layout,
+                                       const std::vector<Eigen::Isometry3d>& zero, int link) {
+  const core::KinematicModel& model = robot.model;
+  // The world names a body after its group's top link (physics/WorldBuilder).
+  const int top = model.rigidGroupTop(link);
+  LinkPlacement place{-1, robot.name + "/" + model.links[top].name, zero[link]};
+  if (model.links[top].parentJoint < 0) return place;
+  const std::optional<int> body = bodyNamed(layout, place.owner);
+  if (!body) return std::nullopt;  // a world of another robot: nothing to draw it on
+  place.body = *body;
+  place.pose = layout.bodies[*body].linkInBody * zero[top].inverse() * zero[link];
+  return place;
+}
+
+/// Reads visual meshes once per file and scale, simplified for the page.
+class VisualMeshes {
+ public:
+  std::optional<json> get(const core::MeshFile& mesh) {
+    const auto key = std::make_pair(
+        mesh.file.string(), std::array<double, 3>{mesh.scale.x(), mesh.scale.y(), mesh.scale.z()});
+    if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
+    std::optional<json> result;
+    try {
+      const core::TriangleMesh full = core::loadMesh(mesh.file, mesh.scale);
+      result =
+          meshJson(core::simplifyMesh(full, kMaxVisualTriangles), mesh.file.filename().string());
+      (*result)["triangles_in_file"] = full.triangles.size();
+    } catch (const core::MeshError& e) {
+      core::warnOnce(
+          "visual " + mesh.file.string(),
+          mesh.file.string() + ": " + e.what() + "; pictures show the link's collision shapes");
+    }
+    loaded_[key] = result;
+    return result;
+  }
+
+ private:
+  std::map<std::pair<std::string, std::array<double, 3>>, std::optional<json>> loaded_;
+};
+
+std::optional<json> visualShapeJson(const core::VisualShape& visual, VisualMeshes& meshes) {
+  return std::visit(
+      [&meshes](const auto& geometry) -> std::optional<json> {
+        if constexpr (std::is_same_v<std::decay_t<decltype(geometry)>, core::MeshFile>)
+          return meshes.get(geometry);
+        else
+          return shapeJson(core::Shape(geometry));
+      },
+      visual.geometry);
+}
+
+/// The link's visuals, or its collision shapes when it has none or one cannot be read.
+std::vector<std::pair<json, Eigen::Isometry3d>> linkPicture(const core::Link& link,
+                                                            VisualMeshes& meshes) {
+  std::vector<std::pair<json, Eigen::Isometry3d>> picture;
+  for (const core::VisualShape& visual : link.visuals) {
+    std::optional<json> entry = visualShapeJson(visual, meshes);
+    if (!entry) {
+      picture.clear();
+      break;
+    }
+    if (visual.colour) {
+      json rgba = json::array();  // urdfdom's floats, to three decimals
+      for (int k = 0; k < 4; ++k) rgba.push_back(std::round((*visual.colour)[k] * 1e3) / 1e3);
+      (*entry)["colour"] = rgba;
+    }
+    picture.emplace_back(std::move(*entry), visual.origin);
+  }
+  if (!picture.empty()) return picture;
+  for (const core::CollisionShape& collision : link.collisions)
+    picture.emplace_back(shapeJson(collision.shape), collision.origin);
+  return picture;
+}
+
+}  // namespace
+
+json visualsJson(const core::Problem& problem, const physics::WorldLayout& layout) {
+  const core::RobotInstance& robot = problem.robot;
+  const core::KinematicModel& model = robot.model;
+  json visuals = json::array();
+  bool anyVisual = false;
+  for (const core::Link& link : model.links) anyVisual = anyVisual || !link.visuals.empty();
+  if (!anyVisual) return visuals;
+  const std::vector<Eigen::Isometry3d> zero =
+      model.linkPoses(robot.home.isometry(), std::vector<double>(model.movableJoints().size()));
+  VisualMeshes meshes;
+  for (std::size_t l = 0; l < model.links.size(); ++l) {
+    const std::optional<LinkPlacement> place = placeLink(robot, layout, zero, static_cast<int>(l));
+    if (!place) continue;
+    for (auto& [entry, origin] : linkPicture(model.links[l], meshes)) {
+      entry["owner"] = place->owner;
+      entry["link"] = model.links[l].name;
+      entry["role"] = "robot";
+      entry["body"] = place->body >= 0 ? json(place->body) : json(nullptr);
+      entry["pose"] = poseJson(place->pose * origin);
+      visuals.push_back(std::move(entry));
+    }
+  }
+  return visuals;
+}
+
+}  // namespace kautham::apps

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <vector>
+
+#include "kautham/physics/World.h"
+
+namespace kautham::physics {
+
+/// Whether the world's contacts are soft enough for objects to sink measurably into what carries
+/// them: a kilogram on one contact point sinks more than a millimetre (Kautham's CFM 0.3 does,
+/// by centimetres; this project's default CFM 1e-5 by micrometres).
+bool hasSoftContacts(const World& world);
+
+/// How deep each body sinks into what carries it when the start is left to rest: the world is
+/// stepped for one simulated second with the robot held still and every object awake, then put
+/// back in `start` exactly. Per body, in metres: the sink of an object that stays in place
+/// (moves less than 1 cm sideways, tilts less than 0.1 rad), 0 for the robot and for objects that
+/// slide or tip (they are not resting). The validity checker does not count this sink as a drop.
+std::vector<double> restingSink(World& world, const std::vector<double>& start);
+
+}  // namespace kautham::physics
