@@ -27,7 +27,7 @@ constexpr double kLiftHeight = 0.03;
 constexpr unsigned kSettleSteps = 10;
 /// Placements drawn for each object moved, and of those, how many the planner tries to reach.
 constexpr int kPlacementDraws = 300;
-constexpr std::size_t kPlacementsTried = 8;
+constexpr std::size_t kPlacementsTried = 25;
 
 physics::PoseTarget pose(const Eigen::Isometry3d& gripper, double tolerance) {
   physics::PoseTarget target;
@@ -49,7 +49,7 @@ core::SettingsParameters<TaskSettings> TaskSettings::parameters(bool withUncerta
                .range(0.01, 3600.0)
                .describe("seconds each geometric sub-query (a reach, a carry) may take at most"))
       .add(&TaskSettings::maxMoves, Parameter::integer("max_moves")
-                                        .byDefault(10)
+                                        .byDefault(20)
                                         .range(0, 1000)
                                         .describe("objects moved out of the way at most"))
       .add(&TaskSettings::speed,
@@ -388,7 +388,9 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
   query_.setClearance(settings_.clearance);
   context_.world().release();
   bool reached = false;
-  for (int move = 0; move <= settings_.maxMoves && !ptc(); ++move) {
+  // Every try moves an object or marks it unmovable; failed tries are bounded too.
+  const int maxTries = 3 * settings_.maxMoves + 3;
+  for (int attempt = 0; attempt < maxTries && !ptc(); ++attempt) {
     setObjectMargin(std::nullopt);
     // An object between the fingers at the pre-grasp: no path can reach the goal, so do not
     // spend a sub-query finding out.
@@ -403,7 +405,7 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
           execute(*path, physics::GripperAction::None, -1) && context_.goal().reached(now().data());
       break;
     }
-    if (move == settings_.maxMoves) break;
+    if (moves_ == settings_.maxMoves) break;
     clearPath_.reset();
     const std::optional<std::size_t> object = obstruction(ptc);
     if (clearPath_) {
@@ -421,7 +423,10 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
     }
     // A move that fails without breaking a rule (no reach, no free place reachable) leaves
     // the scene as it was, or the object put down where it was lifted: try again from there.
-    if (!moveAway(*object, ptc) && plan_.violation != physics::Violation::None) break;
+    if (!moveAway(*object, ptc) && plan_.violation != physics::Violation::None) {
+      OMPL_DEBUG("%s: stopped: %s", getName().c_str(), physics::toString(plan_.violation));
+      break;
+    }
   }
   context_.world().release();
   if (plan_.controls.empty()) return ompl::base::PlannerStatus::TIMEOUT;

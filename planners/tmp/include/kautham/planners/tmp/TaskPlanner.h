@@ -19,7 +19,7 @@ struct TaskSettings {
   bool uncertainty = false;   ///< TMP-U: movable objects inflated by their pose uncertainty
   double sigmas = 3.0;        ///< k: the inflation is k standard deviations of x and y
   double subQueryTime = 2.0;  ///< s: at most this for each geometric sub-query
-  int maxMoves = 10;          ///< objects moved at most, before giving up
+  int maxMoves = 20;          ///< objects moved at most, before giving up
   double speed = 0.5;         ///< joint speed along paths, a fraction of the limits
   double clearance = 0.002;   ///< m kept from every obstacle while planning
   double graspGap = 0.01;     ///< m between the object's top and the gripper's origin
