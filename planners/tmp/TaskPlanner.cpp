@@ -26,7 +26,7 @@ constexpr double kLiftHeight = 0.03;
 /// Propagation steps the arm holds still after a release while the object settles.
 constexpr unsigned kSettleSteps = 10;
 /// Placements drawn for each object moved, and of those, how many the planner tries to reach.
-constexpr int kPlacementDraws = 300;
+constexpr int kPlacementDraws = 600;
 constexpr std::size_t kPlacementsTried = 25;
 
 physics::PoseTarget pose(const Eigen::Isometry3d& gripper, double tolerance) {
@@ -289,28 +289,30 @@ bool TaskPlanner::carryAway(std::size_t object, const Ptc& ptc) {
   const physics::WorldLayout& layout = context_.layout();
   const Eigen::Isometry3d held = layout.linkPose(now().data(), object);
   const Eigen::Isometry3d inGripper = query_.checker().held()->inGripper;
-  std::vector<Eigen::Vector2d> places =
-      samplePlacements(placementRules(object), footprint(object).radius, kPlacementDraws, rng_);
-  // Farthest from the pre-grasp first: an object put down near it tends to be in the way of
-  // the next path there.
-  const Eigen::Vector2d goal = context_.goal().position().head<2>();
-  std::stable_sort(places.begin(), places.end(),
-                   [&goal](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-                     return (a - goal).norm() > (b - goal).norm();
-                   });
+  std::vector<Eigen::Vector2d> places = placesFor(object, false);
+  if (places.empty()) places = placesFor(object, true);
   OMPL_DEBUG("%s: %zu free places for %s", getName().c_str(), places.size(),
              layout.bodies[object].name.c_str());
   for (std::size_t i = 0; i < std::min(places.size(), kPlacementsTried) && !ptc(); ++i) {
-    Eigen::Isometry3d placed = held;  // upright as it stood, on the table again
-    placed.translation() = Eigen::Vector3d(places[i].x(), places[i].y(),
-                                           context_.startState()[object * 13 + 2] + kDropHeight);
+    // Upright as it stood, its centre 5 mm above where it stood on the table.
+    const double startHeight =
+        physics::WorldLayout::position(context_.startState().data(), object).z();
+    Eigen::Isometry3d placed = held;
+    placed.translation() = Eigen::Vector3d(places[i].x(), places[i].y(), startHeight + kDropHeight);
     placed.translation().z() +=
         held.translation().z() - physics::WorldLayout::position(now().data(), object).z();
     const physics::PoseTarget target = pose(placed * inGripper.inverse(), 0.005);
     const ompl::base::GoalPtr placeGoal = poseGoal(target);
-    if (!reachable(*placeGoal)) continue;  // out of the arm's reach: not worth a sub-query
+    if (!reachable(*placeGoal)) {  // out of the arm's reach: not worth a sub-query
+      OMPL_DEBUG("%s: place %zu (%.2f, %.2f) out of reach", getName().c_str(), i, places[i].x(),
+                 places[i].y());
+      continue;
+    }
     const auto path = planTo(placeGoal, ptc);
-    if (!path) continue;
+    if (!path) {
+      OMPL_DEBUG("%s: no path to place %zu", getName().c_str(), i);
+      continue;
+    }
     const bool carried = execute(*path, physics::GripperAction::None, -1);
     context_.world().release();
     query_.checker().hold(std::nullopt);
@@ -342,6 +344,28 @@ Footprint TaskPlanner::footprint(std::size_t body) const {
       box.extend(core::boundingBox(shape.shape, shape.pose));
   const Eigen::Vector3d p = physics::WorldLayout::position(now().data(), body);
   return {{p.x(), p.y()}, 0.5 * std::max(box.sizes().x(), box.sizes().y())};
+}
+
+std::vector<Eigen::Vector2d> TaskPlanner::placesFor(std::size_t object, bool latestCorridorOnly) {
+  PlacementRules rules = placementRules(object);
+  if (latestCorridorOnly && rules.corridors.size() > 2)
+    rules.corridors.erase(rules.corridors.begin(), rules.corridors.end() - 2);
+  std::vector<Eigen::Vector2d> places =
+      samplePlacements(rules, footprint(object).radius, kPlacementDraws, rng_);
+  // Within the arm's reach: no farther from its base than the pre-grasp is (plus 10 cm).
+  const Eigen::Vector2d base = context_.problem().robot.home.position.head<2>();
+  const Eigen::Vector2d goal = context_.goal().position().head<2>();
+  const double reach = (goal - base).norm() + 0.1;
+  places.erase(std::remove_if(places.begin(), places.end(),
+                              [&](const Eigen::Vector2d& p) { return (p - base).norm() > reach; }),
+               places.end());
+  // Farthest from the pre-grasp first: an object put down near it tends to be in the way of
+  // the next path there.
+  std::stable_sort(places.begin(), places.end(),
+                   [&goal](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+                     return (a - goal).norm() > (b - goal).norm();
+                   });
+  return places;
 }
 
 PlacementRules TaskPlanner::placementRules(std::size_t moved) const {

@@ -69,6 +69,9 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
 
   Footprint footprint(std::size_t body) const;
   PlacementRules placementRules(std::size_t moved) const;
+  /// Free places for `object` within the arm's reach, farthest from the pre-grasp first; off
+  /// every corridor found so far, or only off the latest (when the others leave no room).
+  std::vector<Eigen::Vector2d> placesFor(std::size_t object, bool latestCorridorOnly);
   void setObjectMargin(std::optional<std::size_t> except);
 
   physics::PlanningContext& context_;
