@@ -9,6 +9,7 @@
 #include <ompl/base/spaces/RealVectorStateSpace.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/PathSimplifier.h>
+#include <ompl/util/Console.h>
 
 #include "kautham/planners/geometric/JointSpaceGoals.h"
 
@@ -97,8 +98,14 @@ std::optional<CoordinatePath> GeometricQuery::plan(
 
   planner.clear();
   planner.setProblemDefinition(pdef);
-  planner.setup();
+  if (!planner.isSetup()) planner.setup();  // once: the task planner reuses its planner
+  // OMPL warns of every goal sample it skips, and a goal that IK cannot reach in the scene
+  // (the task planner asks such questions on purpose) would print hundreds of lines; the
+  // outcome says what matters. Debug output (KAUTHAM_OMPL_DEBUG) keeps everything.
+  const ompl::msg::LogLevel level = ompl::msg::getLogLevel();
+  if (level != ompl::msg::LOG_DEBUG) ompl::msg::setLogLevel(ompl::msg::LOG_NONE);
   const ompl::base::PlannerStatus status = planner.solve(ptc);
+  ompl::msg::setLogLevel(level);
   if (status != ompl::base::PlannerStatus::EXACT_SOLUTION) return std::nullopt;
 
   auto& path = static_cast<ompl::geometric::PathGeometric&>(*pdef->getSolutionPath());

@@ -118,6 +118,18 @@ TEST(TaskPlannerTest, PlacedObjectsStandOffEveryOtherObject) {
   }
 }
 
+TEST(TaskPlannerTest, AFixedSeedGivesTheSamePlanWithTheSameGrasps) {
+  const TaskRun a = planWithTmp("problems/kuka_clutter_10.xml", "TMP-U", 3);
+  const TaskRun b = planWithTmp("problems/kuka_clutter_10.xml", "TMP-U", 3);
+  ASSERT_TRUE(a.outcome.solved);
+  ASSERT_EQ(a.outcome.controls.size(), b.outcome.controls.size());
+  for (std::size_t i = 0; i < a.outcome.controls.size(); ++i) {
+    EXPECT_EQ(a.outcome.controls[i].values, b.outcome.controls[i].values) << i;
+    EXPECT_EQ(a.outcome.controls[i].action, b.outcome.controls[i].action) << i;
+    EXPECT_EQ(a.outcome.controls[i].object, b.outcome.controls[i].object) << i;
+  }
+}
+
 TEST(PlacementTest, SampledPlacementsKeepOffTheCorridorAndOffOtherObjects) {
   tmp::PlacementRules rules;
   rules.area = Eigen::AlignedBox2d(Eigen::Vector2d(-0.5, -0.3), Eigen::Vector2d(0.5, 0.3));
