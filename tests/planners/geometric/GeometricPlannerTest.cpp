@@ -66,6 +66,48 @@ TEST(SceneCheckerTest, TheStartIsFreeAndAGripperInsideACanTouchesThatCan) {
             fixedOnly.bodies.end());
 }
 
+TEST(SceneCheckerTest, AnObjectMarginKeepsTheArmFartherFromMovableObjects) {
+  // TMP-U's inflation: just clear of a can, the arm is valid; with a 15 mm margin it is not.
+  Scene scene("problems/kuka_clutter_10.xml");
+  physics::SceneChecker& checker = scene.query.checker();
+  const physics::WorldLayout& layout = scene.context.layout();
+  std::size_t can = 0;
+  while (layout.bodies[can].name != "can1") ++can;
+  physics::PoseTarget inside;
+  inside.position = layout.linkPose(scene.context.startState().data(), can).translation();
+  inside.approach = Eigen::Vector3d(0, 1, 0);  // from the side, as the pre-grasp
+  inside.tolerance = 0.01;
+  inside.angleTolerance = 0.2;
+  std::optional<std::vector<double>> in;
+  for (int attempt = 0; attempt < 50 && !in; ++attempt)
+    in = scene.query.ik().solve(
+        inside, std::vector<double>(scene.query.joints().dimension(), 0.1 + 0.016 * attempt));
+  ASSERT_TRUE(in);
+  // Bisect the straight line from the start to it: the last configuration that touches nothing.
+  const std::vector<double>& start = scene.query.joints().start();
+  const auto at = [&](double t) {
+    std::vector<double> c(start.size());
+    for (std::size_t i = 0; i < c.size(); ++i) c[i] = start[i] + t * ((*in)[i] - start[i]);
+    return c;
+  };
+  ASSERT_FALSE(checker.touchesAt(start.data()).any());
+  ASSERT_TRUE(checker.touchesAt(in->data()).any());
+  double free = 0.0, touching = 1.0;
+  for (int step = 0; step < 30; ++step) {
+    const double middle = 0.5 * (free + touching);
+    (checker.touchesAt(at(middle).data()).any() ? touching : free) = middle;
+  }
+  const std::vector<double> justClear = at(free);
+  const physics::RobotTouches first = checker.touchesAt(at(touching).data());
+  ASSERT_FALSE(checker.touchesAt(justClear.data()).any());
+  checker.setObjectMargin(0.015);
+  const physics::RobotTouches inflated = checker.touchesAt(justClear.data());
+  checker.setObjectMargin(0.0);
+  ASSERT_FALSE(first.fixed || first.target) << "the line must first meet a movable object";
+  EXPECT_FALSE(inflated.bodies.empty());
+  EXPECT_FALSE(inflated.fixed);  // the margin is for movable objects only
+}
+
 TEST(SceneCheckerTest, AHeldObjectMovesWithTheGripper) {
   Scene scene("problems/kuka_clutter_10.xml");
   physics::SceneChecker& checker = scene.query.checker();
