@@ -193,6 +193,9 @@ bool World::attach(std::size_t body, double reach) {
   dJointSetFixed(grip_);
   dBodyEnable(bodies_[body]);
   dBodySetAutoDisableFlag(bodies_[body], 0);  // a held object never sleeps
+  // The arm holds itself (its links have no gravity); what it holds is its payload, carried
+  // the same way, or its weight would drag the velocity-driven joints off their path.
+  dBodySetGravityMode(bodies_[body], 0);
   held_ = body;
   return true;
 }
@@ -200,6 +203,7 @@ bool World::attach(std::size_t body, double reach) {
 void World::release() {
   if (grip_) dJointDestroy(grip_);
   grip_ = nullptr;
+  if (held_) dBodySetGravityMode(bodies_[*held_], 1);
   if (held_ && std::find(sleepers_.begin(), sleepers_.end(), bodies_[*held_]) != sleepers_.end())
     dBodySetAutoDisableFlag(bodies_[*held_], 1);
   held_.reset();

@@ -88,7 +88,8 @@ class World {
   /// things that move with neither. Makes no contact joints and records no events.
   RobotTouches robotTouches(int heldBody = -1);
   /// Fixes the object `body` to the gripper (the goal link's body) where it is now, with an
-  /// ODE fixed joint: the task planner's grasp. Returns false, holding nothing, if the object
+  /// ODE fixed joint: the task planner's grasp. While held it has no gravity, as the arm's
+  /// links have none (a gravity-compensated payload). Returns false, holding nothing, if the object
   /// is not within `reach` metres of the goal link's origin (measured to the object's
   /// bounding box). Holding is not part of the state: replays and executions start with
   /// release().
