@@ -9,6 +9,37 @@
 
 namespace kautham::physics {
 
+TrackedPath holdControl(PlanningContext& context, const std::vector<double>& start,
+                        const std::vector<double>& control, unsigned steps) {
+  const ompl::control::SpaceInformation& si = *context.spaceInformation();
+  ompl::base::State* from = si.allocState();
+  ompl::base::State* to = si.allocState();
+  ompl::control::Control* applied = si.allocControl();
+  std::copy(start.begin(), start.end(), WorldStateSpace::values(from));
+  std::copy(control.begin(), control.end(),
+            applied->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
+  const WorldValidityChecker& checker = context.validityChecker();
+  unsigned done = 0;
+  Violation violation = Violation::None;
+  while (done < steps && violation == Violation::None) {
+    context.propagator().propagate(from, applied, si.getPropagationStepSize(), to);
+    std::swap(from, to);
+    ++done;
+    violation =
+        checker.check(WorldStateSpace::values(from), checker.targetStart(), context.world().held());
+  }
+  const double* end = WorldStateSpace::values(from);
+  TrackedPath held;
+  held.states = {start, std::vector<double>(end, end + context.layout().stateSize())};
+  held.controls = {{control, done}};
+  held.violation = violation;
+  held.complete = violation == Violation::None;
+  si.freeState(from);
+  si.freeState(to);
+  si.freeControl(applied);
+  return held;
+}
+
 namespace {
 
 /// Follows the path with a reference point that moves along it at the tracking speed: each
@@ -26,20 +57,9 @@ class Tracker {
         settings_(settings),
         steps_(si_.getMinControlDuration()),
         duration_(steps_ * si_.getPropagationStepSize()),
-        linkSpeedLimit_(context.problem().kinodynamics.maxLinkSpeed),
-        from_(si_.allocState()),
-        to_(si_.allocState()),
-        control_(si_.allocControl()) {
-    std::copy(start.begin(), start.end(), WorldStateSpace::values(from_));
+        linkSpeedLimit_(context.problem().kinodynamics.maxLinkSpeed) {
     path_.states.push_back(start);
   }
-  ~Tracker() {
-    si_.freeState(from_);
-    si_.freeState(to_);
-    si_.freeControl(control_);
-  }
-  Tracker(const Tracker&) = delete;
-  Tracker& operator=(const Tracker&) = delete;
 
   /// Follows the straight joint-space segment from `a` to `b`; false if the tracking must stop.
   bool follow(const std::vector<double>& a, const std::vector<double>& b) {
@@ -90,9 +110,7 @@ class Tracker {
     return *std::max_element(travel.begin(), travel.end());
   }
 
-  const double* joints() const {
-    return WorldStateSpace::values(from_) + layout_.jointPositionIndex();
-  }
+  const double* joints() const { return path_.states.back().data() + layout_.jointPositionIndex(); }
 
   double largestError(const std::vector<double>& target) const {
     double largest = 0.0;
@@ -101,39 +119,16 @@ class Tracker {
     return largest;
   }
 
-  /// One control towards `reference`, propagated one step at a time as replays do (so the
-  /// plan replays bit for bit), stopping at the first invalid state.
+  /// One control towards `reference` (holdControl: the plan replays bit for bit).
   bool apply(const std::vector<double>& reference) {
     std::vector<double> velocities(reference.size());
     for (std::size_t j = 0; j < reference.size(); ++j)
       velocities[j] = (reference[j] - joints()[j]) / duration_;
     std::vector<double> u = context_.propagator().mapping().controlsFor(velocities);
     for (double& value : u) value = std::clamp(value, -1.0, 1.0);
-    auto* values = control_->as<ompl::control::RealVectorControlSpace::ControlType>()->values;
-    std::copy(u.begin(), u.end(), values);
-
-    const double stepSize = si_.getPropagationStepSize();
-    for (unsigned s = 0; s < steps_; ++s) {
-      context_.propagator().propagate(from_, control_, stepSize, to_);
-      std::swap(from_, to_);
-      const WorldValidityChecker& checker = context_.validityChecker();
-      const Violation violation = checker.check(WorldStateSpace::values(from_),
-                                                checker.targetStart(), context_.world().held());
-      if (violation != Violation::None) {
-        path_.violation = violation;
-        path_.controls.push_back({u, s + 1});
-        record();
-        return false;
-      }
-    }
-    path_.controls.push_back({u, steps_});
-    record();
-    return true;
-  }
-
-  void record() {
-    const double* values = WorldStateSpace::values(from_);
-    path_.states.emplace_back(values, values + layout_.stateSize());
+    const TrackedPath step = holdControl(context_, path_.states.back(), u, steps_);
+    append(path_, step);
+    return step.complete;
   }
 
   PlanningContext& context_;
@@ -143,9 +138,6 @@ class Tracker {
   unsigned steps_;         ///< propagation steps per control: the shortest a control may last
   double duration_;        ///< seconds per control
   double linkSpeedLimit_;  ///< m/s
-  ompl::base::State* from_;
-  ompl::base::State* to_;
-  ompl::control::Control* control_;
   TrackedPath path_;
 };
 

@@ -71,9 +71,10 @@ RobotTouches SceneChecker::touchesShifted(std::vector<double> state,
   return touches;
 }
 
-RobotTouches SceneChecker::touchesAt(const double* c) const {
+RobotTouches SceneChecker::touchesAt(const double* c) const { return touchesOf(stateAt(c)); }
+
+RobotTouches SceneChecker::touchesOf(const std::vector<double>& state) const {
   ++checks_;
-  const std::vector<double> state = stateAt(c);
   RobotTouches touches = touchesShifted(state, Eigen::Vector3d::Zero());
   for (const Eigen::Vector3d& shift : shifts_) {
     if (touches.any()) break;
@@ -99,7 +100,7 @@ bool SceneChecker::isValid(const ompl::base::State* state) const {
   if (workspace_ && !workspace_->contains(world_->layout().goalLinkPosition(placed.data())))
     return false;
   if (rules_ && rules_->check(placed.data()) != Violation::None) return false;
-  return !touchesAt(c).any();
+  return !touchesOf(placed).any();
 }
 
 }  // namespace kautham::physics

@@ -176,15 +176,7 @@ bool World::attach(std::size_t body, double reach) {
   readState(state.data());
   const Eigen::Vector3d tcp = layout_.goalLinkPosition(state.data());
   // Distance from the gripper to the object's shapes' bounding box, in the world.
-  Eigen::AlignedBox3d box;
-  const dReal* p = dBodyGetPosition(bodies_[body]);
-  const dReal* q = dBodyGetQuaternion(bodies_[body]);
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = Eigen::Vector3d(p[0], p[1], p[2]);
-  pose.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
-  for (const ShapeInfo& shape : layout_.shapes)
-    if (shape.body == static_cast<int>(body))
-      box.extend(core::boundingBox(shape.shape, pose * shape.pose));
+  const Eigen::AlignedBox3d box = layout_.bounds(body, state.data());
   if (box.isEmpty() || box.exteriorDistance(tcp) > reach) return false;
 
   dBodyID gripper = bodies_[static_cast<std::size_t>(layout_.goalBody)];

@@ -47,6 +47,16 @@ Eigen::Isometry3d WorldLayout::linkPose(const double* state, std::size_t body) c
   return bodyPose * bodies[body].linkInBody;
 }
 
+Eigen::AlignedBox3d WorldLayout::bounds(std::size_t body, const double* state) const {
+  const Eigen::Isometry3d pose = state ? linkPose(state, body) * bodies[body].linkInBody.inverse()
+                                       : Eigen::Isometry3d::Identity();
+  Eigen::AlignedBox3d box;
+  for (const ShapeInfo& shape : shapes)
+    if (shape.body == static_cast<int>(body))
+      box.extend(core::boundingBox(shape.shape, pose * shape.pose));
+  return box;
+}
+
 void WorldLayout::placeBody(double* state, std::size_t body, const Eigen::Isometry3d& link) const {
   const Eigen::Isometry3d pose = link * bodies[body].linkInBody.inverse();
   double* s = state + body * kBodyStateSize;

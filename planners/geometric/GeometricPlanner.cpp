@@ -73,7 +73,7 @@ void GeometricPlanner::getPlannerData(ompl::base::PlannerData& data) const {
   ompl::base::PlannerData inner(query_.spaceInformation());
   inner_->getPlannerData(inner);
   freeTreeStates();
-  auto& checker = const_cast<GeometricQuery&>(query_).checker();
+  const physics::SceneChecker& checker = query_.checker();
   const unsigned offset = data.numVertices();
   for (unsigned i = 0; i < inner.numVertices(); ++i) {
     const double* c =

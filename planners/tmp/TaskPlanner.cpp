@@ -148,33 +148,11 @@ bool TaskPlanner::execute(const geometric::CoordinatePath& path, physics::Grippe
 }
 
 bool TaskPlanner::holdStill(physics::GripperAction action, unsigned steps) {
-  const auto& si = *context_.spaceInformation();
-  ompl::base::State* from = si.allocState();
-  ompl::base::State* to = si.allocState();
-  ompl::control::Control* control = si.allocControl();
-  si.getControlSpace()->nullControl(control);
-  std::copy(now().begin(), now().end(), physics::WorldStateSpace::values(from));
-  physics::TrackedPath still;
-  still.states.push_back(now());
-  physics::ControlStep step{std::vector<double>(context_.propagator().mapping().size(), 0.0), steps,
-                            action, -1};
-  const physics::WorldValidityChecker& checker = context_.validityChecker();
-  for (unsigned s = 0; s < steps && still.violation == physics::Violation::None; ++s) {
-    context_.propagator().propagate(from, control, si.getPropagationStepSize(), to);
-    std::swap(from, to);
-    const double* values = physics::WorldStateSpace::values(from);
-    still.violation = checker.check(values, checker.targetStart(), context_.world().held());
-    if (still.violation != physics::Violation::None) step.steps = s + 1;
-  }
-  const double* values = physics::WorldStateSpace::values(from);
-  still.controls.push_back(step);
-  still.states.emplace_back(values, values + context_.layout().stateSize());
-  still.complete = still.violation == physics::Violation::None;
-  si.freeState(from);
-  si.freeState(to);
-  si.freeControl(control);
-  physics::append(plan_, still);
-  return still.complete;
+  const std::vector<double> still(context_.propagator().mapping().size(), 0.0);
+  physics::TrackedPath held = physics::holdControl(context_, now(), still, steps);
+  held.controls.front().action = action;
+  physics::append(plan_, held);
+  return held.complete;
 }
 
 std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
@@ -223,12 +201,7 @@ std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
 
 bool TaskPlanner::grasp(std::size_t object, const Ptc& ptc) {
   const physics::WorldLayout& layout = context_.layout();
-  Eigen::AlignedBox3d box;
-  const Eigen::Isometry3d bodyPose =
-      layout.linkPose(now().data(), object) * layout.bodies[object].linkInBody.inverse();
-  for (const physics::ShapeInfo& shape : layout.shapes)
-    if (shape.body == static_cast<int>(object))
-      box.extend(core::boundingBox(shape.shape, bodyPose * shape.pose));
+  const Eigen::AlignedBox3d box = layout.bounds(object, now().data());
   // From above: the gripper's origin over the top's centre, its approach axis down.
   Eigen::Isometry3d gripper = Eigen::Isometry3d::Identity();
   gripper.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
@@ -337,11 +310,7 @@ bool TaskPlanner::moveAway(std::size_t object, const Ptc& ptc) {
 }
 
 Footprint TaskPlanner::footprint(std::size_t body) const {
-  const physics::WorldLayout& layout = context_.layout();
-  Eigen::AlignedBox3d box;
-  for (const physics::ShapeInfo& shape : layout.shapes)
-    if (shape.body == static_cast<int>(body))
-      box.extend(core::boundingBox(shape.shape, shape.pose));
+  const Eigen::AlignedBox3d box = context_.layout().bounds(body);
   const Eigen::Vector3d p = physics::WorldLayout::position(now().data(), body);
   return {{p.x(), p.y()}, 0.5 * std::max(box.sizes().x(), box.sizes().y())};
 }

@@ -37,6 +37,11 @@ struct TrackingSettings {
 std::shared_ptr<ompl::control::PathControl> controlPath(
     const TrackedPath& tracked, const ompl::control::SpaceInformationPtr& si);
 
+/// One control held for `steps` propagation steps from `start`, one propagation step at a time
+/// as replays do, stopping at the first invalid state (full rules, the held object exempt).
+TrackedPath holdControl(PlanningContext& context, const std::vector<double>& start,
+                        const std::vector<double>& control, unsigned steps);
+
 /// Appends `next` (tracked from where `path` ends) to `path`.
 void append(TrackedPath& path, const TrackedPath& next);
 

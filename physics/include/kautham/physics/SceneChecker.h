@@ -78,6 +78,8 @@ class SceneChecker : public ompl::base::StateValidityChecker {
   const JointSpace* joints_;
   int gripperLink_;
   std::vector<double> scene_;
+  /// What the robot touches in `state` (a stateAt() result), with the clearance and margins.
+  RobotTouches touchesOf(const std::vector<double>& state) const;
   /// Touches of the robot placed as in `state` shifted by `offset`.
   RobotTouches touchesShifted(std::vector<double> state, const Eigen::Vector3d& offset) const;
 

@@ -90,6 +90,9 @@ class WorldLayout {
   Eigen::Matrix3d goalLinkOrientation(const double* state) const;
   /// World pose of a body's main link.
   Eigen::Isometry3d linkPose(const double* state, std::size_t body) const;
+  /// World-aligned bounding box of a body's collision shapes in `state` (without `state`: in
+  /// the body's own frame).
+  Eigen::AlignedBox3d bounds(std::size_t body, const double* state = nullptr) const;
   /// Puts a body where its main link is at `link` (world pose), at rest.
   void placeBody(double* state, std::size_t body, const Eigen::Isometry3d& link) const;
 };

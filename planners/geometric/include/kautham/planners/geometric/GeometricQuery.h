@@ -26,6 +26,7 @@ class GeometricQuery {
 
   const physics::JointSpace& joints() const { return *joints_; }
   physics::SceneChecker& checker() { return *checker_; }
+  const physics::SceneChecker& checker() const { return *checker_; }
   const physics::InverseKinematics& ik() const { return *ik_; }
   const ompl::base::SpaceInformationPtr& spaceInformation() const { return si_; }
   /// The model index of the goal link (the gripper).
