@@ -25,9 +25,18 @@ constexpr double kDropHeight = 0.005;
 constexpr double kLiftHeight = 0.03;
 /// Propagation steps the arm holds still after a release while the object settles.
 constexpr unsigned kSettleSteps = 10;
-/// Placements drawn for each object moved, and of those, how many the planner tries to reach.
+/// Before a release the arm holds still until the object moves slower than this (m/s), for
+/// at most kMaxStopSteps propagation steps.
+constexpr double kRestSpeed = 0.005;
+constexpr unsigned kMaxStopSteps = 20;
+/// Placements drawn for each object moved; of those, how many within the arm's reach the
+/// planner tries to carry it to, and how many it checks for reach at most (IK is not free).
 constexpr int kPlacementDraws = 600;
 constexpr std::size_t kPlacementsTried = 25;
+constexpr std::size_t kReachChecks = 120;
+/// When no place off every corridor is reachable, places need keep off only the latest one
+/// (and the pre-grasp).
+constexpr std::size_t kRecentCorridors = 1;
 
 physics::PoseTarget pose(const Eigen::Isometry3d& gripper, double tolerance) {
   physics::PoseTarget target;
@@ -95,6 +104,7 @@ void TaskPlanner::clear() {
   plan_ = {};
   corridors_.clear();
   unmovable_.clear();
+  placed_.clear();
   moves_ = 0;
   subQueries_ = 0;
 }
@@ -156,11 +166,19 @@ bool TaskPlanner::holdStill(physics::GripperAction action, unsigned steps) {
 }
 
 std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
-  // Where would the arm go if no movable object were in the way?
+  // Where would the arm go if no movable object were in the way? Objects this planner put
+  // down stay solid if a way around them exists: they were placed off the corridors found so
+  // far, and taking one again only moves the clutter in circles.
   physics::SceneChecker& checker = query_.checker();
-  checker.setObstacles(physics::Obstacles::FixedOnly, unmovable_);
-  const std::optional<geometric::CoordinatePath> free =
+  std::set<std::size_t> solid = unmovable_;
+  solid.insert(placed_.begin(), placed_.end());
+  checker.setObstacles(physics::Obstacles::FixedOnly, solid);
+  std::optional<geometric::CoordinatePath> free =
       planTo(query_.problemGoal(false, coordinatesNow()), ptc);
+  if (!free && solid.size() > unmovable_.size()) {
+    checker.setObstacles(physics::Obstacles::FixedOnly, unmovable_);
+    free = planTo(query_.problemGoal(false, coordinatesNow()), ptc);
+  }
   checker.setObstacles(physics::Obstacles::Everything);
   if (!free) return std::nullopt;
 
@@ -259,14 +277,34 @@ bool TaskPlanner::carryAway(std::size_t object, const Ptc& ptc) {
     query_.checker().hold(std::nullopt);
     return false;
   }
+  // Off every corridor found so far if the arm can reach such a place, else off the latest
+  // ones only (older corridors may be ways the arm no longer needs).
+  std::optional<bool> carried = carryTo(object, placesFor(object, false), ptc);
+  if (!carried && corridors_.size() > kRecentCorridors)
+    carried = carryTo(object, placesFor(object, true), ptc);
+  // The arm stops before it lets go: path tracking ends at speed, and an object released
+  // in motion slides on and may topple.
+  if (carried && *carried) carried = stopHolding(object);
+  context_.world().release();
+  query_.checker().hold(std::nullopt);
+  if (carried) return *carried && holdStill(physics::GripperAction::Release, kSettleSteps);
+  holdStill(physics::GripperAction::Release, kSettleSteps);  // it drops back where it stood
+  return false;
+}
+
+std::optional<bool> TaskPlanner::carryTo(std::size_t object,
+                                         const std::vector<Eigen::Vector2d>& places,
+                                         const Ptc& ptc) {
   const physics::WorldLayout& layout = context_.layout();
   const Eigen::Isometry3d held = layout.linkPose(now().data(), object);
   const Eigen::Isometry3d inGripper = query_.checker().held()->inGripper;
-  std::vector<Eigen::Vector2d> places = placesFor(object, false);
-  if (places.empty()) places = placesFor(object, true);
   OMPL_DEBUG("%s: %zu free places for %s", getName().c_str(), places.size(),
              layout.bodies[object].name.c_str());
-  for (std::size_t i = 0; i < std::min(places.size(), kPlacementsTried) && !ptc(); ++i) {
+  // Places the arm cannot reach do not count: the farthest places come first, and near the
+  // table's far corners or right under the arm's base many are out of reach.
+  std::size_t tried = 0;
+  for (std::size_t i = 0;
+       i < std::min(places.size(), kReachChecks) && tried < kPlacementsTried && !ptc(); ++i) {
     // Upright as it stood, its centre 5 mm above where it stood on the table.
     const double startHeight =
         physics::WorldLayout::position(context_.startState().data(), object).z();
@@ -281,20 +319,23 @@ bool TaskPlanner::carryAway(std::size_t object, const Ptc& ptc) {
                  places[i].y());
       continue;
     }
+    ++tried;
     const auto path = planTo(placeGoal, ptc);
     if (!path) {
       OMPL_DEBUG("%s: no path to place %zu", getName().c_str(), i);
       continue;
     }
-    const bool carried = execute(*path, physics::GripperAction::None, -1);
-    context_.world().release();
-    query_.checker().hold(std::nullopt);
-    return carried && holdStill(physics::GripperAction::Release, kSettleSteps);
+    return execute(*path, physics::GripperAction::None, -1);
   }
-  context_.world().release();
-  query_.checker().hold(std::nullopt);
-  holdStill(physics::GripperAction::Release, kSettleSteps);  // it drops back where it stood
-  return false;
+  return std::nullopt;
+}
+
+bool TaskPlanner::stopHolding(std::size_t object) {
+  for (unsigned step = 0; step < kMaxStopSteps; ++step) {
+    if (physics::WorldLayout::linearVelocity(now().data(), object).norm() < kRestSpeed) break;
+    if (!holdStill(physics::GripperAction::None, 1)) return false;
+  }
+  return true;
 }
 
 bool TaskPlanner::moveAway(std::size_t object, const Ptc& ptc) {
@@ -305,6 +346,7 @@ bool TaskPlanner::moveAway(std::size_t object, const Ptc& ptc) {
     return false;
   }
   unmovable_.clear();
+  placed_.insert(object);
   ++moves_;
   return true;
 }
@@ -317,8 +359,10 @@ Footprint TaskPlanner::footprint(std::size_t body) const {
 
 std::vector<Eigen::Vector2d> TaskPlanner::placesFor(std::size_t object, bool latestCorridorOnly) {
   PlacementRules rules = placementRules(object);
-  if (latestCorridorOnly && rules.corridors.size() > 2)
-    rules.corridors.erase(rules.corridors.begin(), rules.corridors.end() - 2);
+  // rules.corridors: corridors_, then the disc around the pre-grasp.
+  if (latestCorridorOnly && corridors_.size() > kRecentCorridors)
+    rules.corridors.erase(rules.corridors.begin(),
+                          rules.corridors.end() - static_cast<long>(kRecentCorridors + 1));
   std::vector<Eigen::Vector2d> places =
       samplePlacements(rules, footprint(object).radius, kPlacementDraws, rng_);
   // Within the arm's reach: no farther from its base than the pre-grasp is (plus 10 cm).

@@ -59,6 +59,8 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   /// Drives the path through the physics from now(); the first control carries `action`.
   bool execute(const geometric::CoordinatePath& path, physics::GripperAction action, int object);
   bool holdStill(physics::GripperAction action, unsigned steps);
+  /// Holds the arm still until the held `object` is at rest (or a short while has passed).
+  bool stopHolding(std::size_t object);
 
   /// The object to move next, and the gripper's path to the pre-grasp if nothing blocked it.
   std::optional<std::size_t> obstruction(const Ptc& ptc);
@@ -66,6 +68,10 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   bool grasp(std::size_t object, const Ptc& ptc);
   bool lift(std::size_t object);
   bool carryAway(std::size_t object, const Ptc& ptc);
+  /// Carries the held object to the first of `places` the arm reaches and a path leads to;
+  /// whether that motion kept every rule, or nothing if no place could be tried.
+  std::optional<bool> carryTo(std::size_t object, const std::vector<Eigen::Vector2d>& places,
+                              const Ptc& ptc);
 
   Footprint footprint(std::size_t body) const;
   PlacementRules placementRules(std::size_t moved) const;
@@ -84,6 +90,7 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   /// Set by obstruction() when the path it found runs into nothing: the way to the goal.
   std::optional<geometric::CoordinatePath> clearPath_;
   std::set<std::size_t> unmovable_;  ///< objects whose move failed since the last that did not
+  std::set<std::size_t> placed_;     ///< objects this planner has put down somewhere
   ompl::RNG rng_;
   int moves_ = 0;
   int subQueries_ = 0;
