@@ -105,6 +105,7 @@ void TaskPlanner::clear() {
   corridors_.clear();
   unmovable_.clear();
   placed_.clear();
+  outOfReach_.clear();
   moves_ = 0;
   subQueries_ = 0;
 }
@@ -120,6 +121,17 @@ ompl::base::GoalPtr TaskPlanner::poseGoal(const physics::PoseTarget& target) con
   auto goal = std::make_shared<geometric::PoseGoal>(query_.spaceInformation(), query_.ik(), target);
   goal->seedNear(coordinatesNow());
   return goal;
+}
+
+bool TaskPlanner::withinReach(const physics::PoseTarget& target) {
+  // Kinematics only: from where the arm is, then from spread-out seeds.
+  constexpr int kSeeds = 30;
+  std::vector<double> seed = coordinatesNow();
+  for (int i = 0; i < kSeeds; ++i) {
+    if (query_.ik().solve(target, seed)) return true;
+    for (double& c : seed) c = rng_.uniform01();
+  }
+  return false;
 }
 
 bool TaskPlanner::reachable(const ompl::base::Goal& goal) {
@@ -169,14 +181,17 @@ std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
   // Where would the arm go if no movable object were in the way? Objects this planner put
   // down stay solid if a way around them exists: they were placed off the corridors found so
   // far, and taking one again only moves the clutter in circles.
+  // Objects it cannot move are obstacles like the fixed ones.
   physics::SceneChecker& checker = query_.checker();
-  std::set<std::size_t> solid = unmovable_;
+  std::set<std::size_t> stuck = unmovable_;
+  stuck.insert(outOfReach_.begin(), outOfReach_.end());
+  std::set<std::size_t> solid = stuck;
   solid.insert(placed_.begin(), placed_.end());
   checker.setObstacles(physics::Obstacles::FixedOnly, solid);
   std::optional<geometric::CoordinatePath> free =
       planTo(query_.problemGoal(false, coordinatesNow()), ptc);
-  if (!free && solid.size() > unmovable_.size()) {
-    checker.setObstacles(physics::Obstacles::FixedOnly, unmovable_);
+  if (!free && solid.size() > stuck.size()) {
+    checker.setObstacles(physics::Obstacles::FixedOnly, stuck);
     free = planTo(query_.problemGoal(false, coordinatesNow()), ptc);
   }
   checker.setObstacles(physics::Obstacles::Everything);
@@ -203,7 +218,7 @@ std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
       if (first) continue;
       for (int body : checker.touchesAt(values).bodies)
         if (layout.bodies[static_cast<std::size_t>(body)].role == physics::BodyRole::Movable &&
-            !unmovable_.count(static_cast<std::size_t>(body))) {
+            !stuck.count(static_cast<std::size_t>(body))) {
           first = static_cast<std::size_t>(body);
           break;
         }
@@ -214,21 +229,53 @@ std::optional<std::size_t> TaskPlanner::obstruction(const Ptc& ptc) {
   const auto blocker =
       context_.goal().freeSpaceBlocker(checker.stateAt(free->back().data()).data());
   if (!blocker) clearPath_ = free;  // the way is clear after all (the direct try was short)
+  if (blocker && outOfReach_.count(*blocker)) {
+    OMPL_DEBUG("%s: %s fills the pre-grasp's free space and is out of reach", getName().c_str(),
+               layout.bodies[*blocker].name.c_str());
+    return std::nullopt;
+  }
   return blocker;
+}
+
+std::optional<physics::PoseTarget> TaskPlanner::graspFromAbove(std::size_t object) {
+  // The gripper's origin over the top's centre, its approach axis down; for an object beyond
+  // the reach of a vertical approach, tilted outwards (away from the arm's base) by up to 40
+  // degrees, the origin backed off along the approach.
+  const Eigen::AlignedBox3d box = context_.layout().bounds(object, now().data());
+  const Eigen::Vector3d top(box.center().x(), box.center().y(), box.max().z());
+  Eigen::Vector3d outwards = top - context_.problem().robot.home.position;
+  outwards.z() = 0.0;
+  outwards = outwards.norm() > 1e-9 ? outwards.normalized() : Eigen::Vector3d::UnitX();
+  for (const double tilt : {0.0, 0.35, 0.7}) {
+    physics::PoseTarget target;
+    target.approach = -std::cos(tilt) * Eigen::Vector3d::UnitZ() + std::sin(tilt) * outwards;
+    target.position = top - *target.approach * settings_.graspGap;
+    target.tolerance = 0.005;
+    target.angleTolerance = 0.1;
+    if (withinReach(target)) return target;
+  }
+  return std::nullopt;
 }
 
 bool TaskPlanner::grasp(std::size_t object, const Ptc& ptc) {
   const physics::WorldLayout& layout = context_.layout();
-  const Eigen::AlignedBox3d box = layout.bounds(object, now().data());
-  // From above: the gripper's origin over the top's centre, its approach axis down.
-  Eigen::Isometry3d gripper = Eigen::Isometry3d::Identity();
-  gripper.linear() = Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
-  gripper.translation() =
-      Eigen::Vector3d(box.center().x(), box.center().y(), box.max().z() + settings_.graspGap);
-  physics::PoseTarget target = pose(gripper, 0.005);
-  target.angleTolerance = 0.1;
+  // Out of the arm's reach from above, it never will be: an obstacle from now on. In reach
+  // but with no collision-free grasp (its neighbours in the fingers' way), it may be later.
+  const std::optional<physics::PoseTarget> target = graspFromAbove(object);
+  if (!target) {
+    OMPL_DEBUG("%s: %s out of reach from above", getName().c_str(),
+               layout.bodies[object].name.c_str());
+    outOfReach_.insert(object);
+    return false;
+  }
   setObjectMargin(object);
-  const auto path = planTo(poseGoal(target), ptc);
+  const ompl::base::GoalPtr goal = poseGoal(*target);
+  if (!reachable(*goal)) {
+    OMPL_DEBUG("%s: no collision-free grasp of %s", getName().c_str(),
+               layout.bodies[object].name.c_str());
+    return false;
+  }
+  const auto path = planTo(goal, ptc);
   if (!path) {
     OMPL_DEBUG("%s: no path to grasp %s", getName().c_str(), layout.bodies[object].name.c_str());
     return false;

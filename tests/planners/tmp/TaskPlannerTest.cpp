@@ -142,6 +142,21 @@ TEST(TaskPlannerTest, SolvesTwentyObjectsAndLetsGoOfEachObjectAtRest) {
   EXPECT_GE(releases, 3);
 }
 
+TEST(TaskPlannerTest, GraspsAnObjectBeyondAVerticalReachWithATiltedApproach) {
+  // kuka_clutter_30: can20 stands behind the target, in the pre-grasp's free space, 82 cm
+  // from the arm's base, where no vertical approach reaches; the plan must move it.
+  const TaskRun run = planWithTmp("problems/kuka_clutter_30.xml", "TMP", 5);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal);
+  const physics::WorldLayout& layout = run.context->layout();
+  bool graspedCan20 = false;
+  for (const physics::ControlStep& c : run.outcome.controls)
+    if (c.action == physics::GripperAction::Grasp &&
+        layout.bodies[static_cast<std::size_t>(c.object)].name == "can20")
+      graspedCan20 = true;
+  EXPECT_TRUE(graspedCan20);
+}
+
 TEST(TaskPlannerTest, AFixedSeedGivesTheSamePlanWithTheSameGrasps) {
   const TaskRun a = planWithTmp("problems/kuka_clutter_10.xml", "TMP-U", 3);
   const TaskRun b = planWithTmp("problems/kuka_clutter_10.xml", "TMP-U", 3);

@@ -53,6 +53,8 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   ompl::base::GoalPtr poseGoal(const physics::PoseTarget& target) const;
   /// Whether IK finds a valid configuration for a pose goal in the scene as it is now.
   bool reachable(const ompl::base::Goal& goal);
+  /// Whether IK puts the gripper on `target` at all, obstacles aside.
+  bool withinReach(const physics::PoseTarget& target);
   /// A geometric plan from where the arm is now, within `seconds` and the sub-query time.
   std::optional<geometric::CoordinatePath> planTo(const ompl::base::GoalPtr& goal, const Ptc& ptc,
                                                   double seconds = 1e9);
@@ -66,6 +68,8 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   std::optional<std::size_t> obstruction(const Ptc& ptc);
   bool moveAway(std::size_t object, const Ptc& ptc);
   bool grasp(std::size_t object, const Ptc& ptc);
+  /// The gripper's pose to grasp `object` from above, if the arm reaches one.
+  std::optional<physics::PoseTarget> graspFromAbove(std::size_t object);
   bool lift(std::size_t object);
   bool carryAway(std::size_t object, const Ptc& ptc);
   /// Carries the held object to the first of `places` the arm reaches and a path leads to;
@@ -89,8 +93,9 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   std::vector<std::vector<Eigen::Vector2d>> corridors_;
   /// Set by obstruction() when the path it found runs into nothing: the way to the goal.
   std::optional<geometric::CoordinatePath> clearPath_;
-  std::set<std::size_t> unmovable_;  ///< objects whose move failed since the last that did not
-  std::set<std::size_t> placed_;     ///< objects this planner has put down somewhere
+  std::set<std::size_t> unmovable_;   ///< objects whose move failed since the last that did not
+  std::set<std::size_t> placed_;      ///< objects this planner has put down somewhere
+  std::set<std::size_t> outOfReach_;  ///< objects the gripper cannot reach from above
   ompl::RNG rng_;
   int moves_ = 0;
   int subQueries_ = 0;
