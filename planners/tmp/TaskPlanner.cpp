@@ -161,12 +161,20 @@ bool TaskPlanner::execute(const geometric::CoordinatePath& path, physics::Grippe
   physics::TrackingSettings tracking;
   tracking.speed = settings_.speed;
   physics::TrackedPath tracked = physics::trackJointPath(context_, now(), joints, tracking);
+  // A path the physics cannot follow within the rules (the tracked arm strays more than the
+  // clearance and touches something, say) is dropped, like a sub-query that found nothing:
+  // the plan so far stays valid, and the caller may plan again.
+  if (!tracked.complete) {
+    OMPL_DEBUG("%s: dropped a path the arm could not follow (%s)", getName().c_str(),
+               physics::toString(tracked.violation));
+    return false;
+  }
   if (!tracked.controls.empty()) {
     tracked.controls.front().action = action;
     tracked.controls.front().object = object;
   }
   physics::append(plan_, tracked);
-  return tracked.complete;
+  return true;
 }
 
 bool TaskPlanner::holdStill(physics::GripperAction action, unsigned steps) {
@@ -326,22 +334,21 @@ bool TaskPlanner::carryAway(std::size_t object, const Ptc& ptc) {
   }
   // Off every corridor found so far if the arm can reach such a place, else off the latest
   // ones only (older corridors may be ways the arm no longer needs).
-  std::optional<bool> carried = carryTo(object, placesFor(object, false), ptc);
-  if (!carried && corridors_.size() > kRecentCorridors)
-    carried = carryTo(object, placesFor(object, true), ptc);
+  const bool carried =
+      carryTo(object, placesFor(object, false), ptc) ||
+      (corridors_.size() > kRecentCorridors && carryTo(object, placesFor(object, true), ptc));
   // The arm stops before it lets go: path tracking ends at speed, and an object released
   // in motion slides on and may topple.
-  if (carried && *carried) carried = stopHolding(object);
+  const bool stopped = carried && stopHolding(object);
   context_.world().release();
   query_.checker().hold(std::nullopt);
-  if (carried) return *carried && holdStill(physics::GripperAction::Release, kSettleSteps);
-  holdStill(physics::GripperAction::Release, kSettleSteps);  // it drops back where it stood
-  return false;
+  // Let go in every case: where it was carried, or (not carried) back where it stood.
+  const bool settled = holdStill(physics::GripperAction::Release, kSettleSteps);
+  return carried && stopped && settled;
 }
 
-std::optional<bool> TaskPlanner::carryTo(std::size_t object,
-                                         const std::vector<Eigen::Vector2d>& places,
-                                         const Ptc& ptc) {
+bool TaskPlanner::carryTo(std::size_t object, const std::vector<Eigen::Vector2d>& places,
+                          const Ptc& ptc) {
   const physics::WorldLayout& layout = context_.layout();
   const Eigen::Isometry3d held = layout.linkPose(now().data(), object);
   const Eigen::Isometry3d inGripper = query_.checker().held()->inGripper;
@@ -372,9 +379,9 @@ std::optional<bool> TaskPlanner::carryTo(std::size_t object,
       OMPL_DEBUG("%s: no path to place %zu", getName().c_str(), i);
       continue;
     }
-    return execute(*path, physics::GripperAction::None, -1);
+    if (execute(*path, physics::GripperAction::None, -1)) return true;
   }
-  return std::nullopt;
+  return false;
 }
 
 bool TaskPlanner::stopHolding(std::size_t object) {
@@ -485,16 +492,16 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
     if (const auto path =
             blocked ? std::nullopt
                     : planTo(query_.problemGoal(true, coordinatesNow()), ptc, kDirectTry)) {
-      reached =
-          execute(*path, physics::GripperAction::None, -1) && context_.goal().reached(now().data());
+      if (!execute(*path, physics::GripperAction::None, -1)) continue;
+      reached = context_.goal().reached(now().data());
       break;
     }
     if (moves_ == settings_.maxMoves) break;
     clearPath_.reset();
     const std::optional<std::size_t> object = obstruction(ptc);
     if (clearPath_) {
-      reached = execute(*clearPath_, physics::GripperAction::None, -1) &&
-                context_.goal().reached(now().data());
+      if (!execute(*clearPath_, physics::GripperAction::None, -1)) continue;
+      reached = context_.goal().reached(now().data());
       break;
     }
     if (object)

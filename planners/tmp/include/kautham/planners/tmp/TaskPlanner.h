@@ -72,10 +72,9 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   std::optional<physics::PoseTarget> graspFromAbove(std::size_t object);
   bool lift(std::size_t object);
   bool carryAway(std::size_t object, const Ptc& ptc);
-  /// Carries the held object to the first of `places` the arm reaches and a path leads to;
-  /// whether that motion kept every rule, or nothing if no place could be tried.
-  std::optional<bool> carryTo(std::size_t object, const std::vector<Eigen::Vector2d>& places,
-                              const Ptc& ptc);
+  /// Carries the held object to the first of `places` the arm reaches and a path leads to
+  /// that the physics can follow; false if there is none.
+  bool carryTo(std::size_t object, const std::vector<Eigen::Vector2d>& places, const Ptc& ptc);
 
   Footprint footprint(std::size_t body) const;
   PlacementRules placementRules(std::size_t moved) const;
