@@ -224,6 +224,18 @@ std::size_t findQuery(const core::Problem& problem, const std::string& name,
                            problem.file.filename().string() + " does not have");
 }
 
+/// "can3 in 5 runs, cylinder in 2, ...": which objects broke a rule, most often first.
+std::string describeOffenders(const std::map<std::string, std::size_t>& offenders) {
+  std::vector<std::pair<std::string, std::size_t>> sorted(offenders.begin(), offenders.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string text;
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    text += fmt::format("{}{} in {}{}", i ? ", " : "", sorted[i].first, sorted[i].second,
+                        i ? "" : (sorted[i].second == 1 ? " run" : " runs"));
+  return text + " (the object that broke the rule)";
+}
+
 std::string describeUncertainty(const core::Problem& problem,
                                 const physics::UncertaintySampler& sampler) {
   if (!sampler.hasUncertainty()) return "none (every standard deviation is zero)";
@@ -283,6 +295,7 @@ int runValidate(const ValidateOptions& options) {
   std::size_t rejectedStarts = 0;
   std::map<Failure, std::size_t> failures;
   std::map<physics::Violation, std::size_t> violations;
+  std::map<std::string, std::size_t> offenders;  ///< runs in which each object broke a rule
   double distanceSum = 0.0;
   json perRun = json::array();
   for (std::size_t run = 0; run < options.runs; ++run) {
@@ -290,9 +303,16 @@ int runValidate(const ValidateOptions& options) {
     const physics::ExecutionResult r = physics::execute(context, plan.controls, rng, true);
     rejectedStarts += r.rejectedStarts;
     distanceSum += r.finalGoalDistance;
-    perRun.push_back({{"reached_goal", r.reachedGoal},
-                      {"violation", physics::toString(r.firstViolation)},
-                      {"final_goal_distance", r.finalGoalDistance}});
+    json runJson = {{"reached_goal", r.reachedGoal},
+                    {"violation", physics::toString(r.firstViolation)},
+                    {"final_goal_distance", r.finalGoalDistance},
+                    {"time", r.time}};
+    if (r.offendingObject) {
+      const std::string& name = context.layout().bodies[*r.offendingObject].name;
+      runJson["object"] = name;
+      ++offenders[name];
+    }
+    perRun.push_back(std::move(runJson));
     if (r.reachedGoal) {
       ++successes;
     } else {
@@ -327,6 +347,7 @@ int runValidate(const ValidateOptions& options) {
     fmt::print("  {:<22} {:>6}{}\n", label(f), failures[f],
                detail.empty() ? "" : " (" + detail.substr(2) + ")");
   }
+  if (!offenders.empty()) fmt::print("objects      {}\n", describeOffenders(offenders));
   fmt::print("goal distance {:.1f} cm on average at the end\n",
              100.0 * distanceSum / static_cast<double>(options.runs));
   if (rejectedStarts > 0)

@@ -109,6 +109,8 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       result.firstViolation = checker->check(values, checker->targetStart(), world.held());
     }
   }
+  if (result.firstViolation != Violation::None)
+    result.offendingObject = checker->offendingObject(values, checker->targetStart(), world.held());
   world.release();
   result.finalState.assign(values, values + si->getStateDimension());
   si->freeControl(control);

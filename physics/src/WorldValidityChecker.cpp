@@ -109,6 +109,21 @@ Violation WorldValidityChecker::check(const double* state, const Eigen::Vector3d
   return Violation::None;
 }
 
+std::optional<std::size_t> WorldValidityChecker::offendingObject(
+    const double* state, const Eigen::Vector3d& targetReference,
+    std::optional<std::size_t> held) const {
+  const unsigned flags = layout_->flags(state);
+  const bool targetMoved =
+      targetBody_ && (WorldLayout::position(state, *targetBody_) - targetReference).norm() >
+                         limits_.targetTolerance;
+  if ((flags & kRobotTouchedTarget) || targetMoved) return targetBody_;
+  for (std::size_t b = 0; b < layout_->bodies.size(); ++b)
+    if (layout_->bodies[b].role == BodyRole::Movable && held != b &&
+        checkObject(state, b) != Violation::None)
+      return b;
+  return std::nullopt;
+}
+
 bool WorldValidityChecker::onSupport(const Eigen::Vector3d& position) const {
   for (const core::CollisionShape& shape : supportShapes_) {
     const Eigen::Vector3d local = shape.origin.inverse() * position;

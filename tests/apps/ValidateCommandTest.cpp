@@ -87,6 +87,27 @@ TEST_F(ValidateCommandTest, LargeUncertaintyMakesRunsFailAndCountsWhy) {
   for (const char* reason :
        {"goal missed", "target touched", "object fell or tipped", "too fast", "other"})
     EXPECT_NE(run.output.find("  " + std::string(reason)), std::string::npos) << reason;
+  // A run that failed because of an object names it: the glass when the robot touched or
+  // moved it. A run's time is the whole plan's unless a violation stopped it.
+  double motion = 0.0;
+  for (const auto& r : report["results"]) motion = std::max(motion, r["time"].get<double>());
+  int named = 0;
+  for (const auto& r : report["results"]) {
+    const std::string violation = r["violation"];
+    if (violation == "none") {
+      EXPECT_DOUBLE_EQ(r["time"].get<double>(), motion);
+    }
+    if (violation == "robot touched the target" || violation == "target moved") {
+      EXPECT_EQ(r.value("object", ""), "glass") << r.dump();
+      EXPECT_LT(r["time"].get<double>(), motion);
+      ++named;
+    }
+    if (r["reached_goal"].get<bool>()) {
+      EXPECT_FALSE(r.contains("object")) << r.dump();
+    }
+  }
+  EXPECT_GT(named, 0) << run.output;
+  EXPECT_NE(run.output.find("objects      glass in "), std::string::npos) << run.output;
 
   // The same seed gives the same report, word for word.
   const CommandRun again = kautham(command);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -18,6 +19,8 @@ struct ExecutionResult {
   double time = 0.0;               ///< seconds of motion executed (up to the violation)
   std::vector<double> startState;  ///< the sampled start (the context's when not sampling)
   std::vector<double> finalState;  ///< the state at the end (or at the violation)
+  /// The object that broke the rule (a layout body), when an object did
+  std::optional<std::size_t> offendingObject;
   ContactParameters contact;       ///< the contact parameters of the run
   std::size_t rejectedStarts = 0;  ///< sampled starts redrawn because things interpenetrated
 };

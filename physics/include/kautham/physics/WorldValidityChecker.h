@@ -58,6 +58,12 @@ class WorldValidityChecker : public ompl::base::StateValidityChecker {
   /// checks: carried, it leaves the table and turns with the gripper by design.
   Violation check(const double* state, const Eigen::Vector3d& targetReference,
                   std::optional<std::size_t> held) const;
+  /// Which object breaks a rule in `state`: the target if the robot touched or moved it, else
+  /// the first movable object (other than `held`) that is too fast, tilted or off the support.
+  /// Nothing if no object does (the robot broke a rule, or none was broken).
+  std::optional<std::size_t> offendingObject(const double* state,
+                                             const Eigen::Vector3d& targetReference,
+                                             std::optional<std::size_t> held) const;
   /// Per body, how deep it sinks when resting at the start (RestingSink.h): soft contacts let
   /// objects settle into the ground, which is no drop. Zero for every body until set.
   void allowRestingSink(std::vector<double> sink);
