@@ -344,9 +344,19 @@ def summarise(runs):
     return cells, list(order)
 
 
+# Our planners that stand for the paper's columns under another name.
+PAPER_ALIASES = {"tmp": "tp", "tmp-u": "tpu"}
+
+
+def is_paper_planner(planner, name):
+    """Whether our configuration `planner` is the paper's column `name` (TMP is its TP)."""
+    ours = planner.lower()
+    return PAPER_ALIASES.get(ours, ours) == name.lower()
+
+
 def paper_value(planner, n_objects):
     for name, table in PAPER.items():
-        if planner.lower() == name.lower():
+        if is_paper_planner(planner, name):
             return table.get(n_objects)
     return None
 
@@ -502,7 +512,7 @@ def paper_overlay(ax, planners, cols, index, with_paper, family_n):
         return
     extra = ["#555555", "#999999"]
     for name, table in PAPER.items():
-        ours = [p for p in planners if p.lower() == name.lower()]
+        ours = [p for p in planners if is_paper_planner(p, name)]
         colour = cols[ours[0]] if ours else extra[0 if name == "TP" else 1]
         pts = sorted((n, v[index]) for n, v in table.items() if n in family_n)
         if not pts:

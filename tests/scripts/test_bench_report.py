@@ -193,6 +193,13 @@ class Statistics(unittest.TestCase):
         self.assertEqual((lo, hi), (10, 21))
         self.assertGreaterEqual(coverage, 0.95)
 
+    def test_tmp_stands_for_the_papers_task_planners(self):
+        self.assertEqual(self.m.paper_value("TMP", 20), (94, 57))
+        self.assertEqual(self.m.paper_value("TMP-U", 20), (70, 229))
+        self.assertEqual(self.m.paper_value("tp", 30), (84, 77))
+        self.assertIsNone(self.m.paper_value("TMP", 5))  # the paper gives no TP at 5 objects
+        self.assertIsNone(self.m.paper_value("o-KPIECE", 20))
+
     def test_problem_family(self):
         self.assertEqual(self.m.problem_family("yumi_clutter_40"), ("yumi_clutter", 40))
         self.assertEqual(self.m.problem_family("pusher_free"), ("pusher_free", None))
