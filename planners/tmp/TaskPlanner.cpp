@@ -283,16 +283,18 @@ bool TaskPlanner::grasp(std::size_t object, const Ptc& ptc) {
                layout.bodies[object].name.c_str());
     return false;
   }
-  const auto path = planTo(goal, ptc);
-  if (!path) {
-    OMPL_DEBUG("%s: no path to grasp %s", getName().c_str(), layout.bodies[object].name.c_str());
-    return false;
+  // Another path, if the physics could not follow the first (RRTConnect's paths differ).
+  constexpr int kPathTries = 3;
+  bool reached = false;
+  for (int attempt = 0; attempt < kPathTries && !reached && !ptc(); ++attempt) {
+    const auto path = planTo(goal, ptc);
+    if (!path) {
+      OMPL_DEBUG("%s: no path to grasp %s", getName().c_str(), layout.bodies[object].name.c_str());
+      return false;
+    }
+    reached = execute(*path, physics::GripperAction::None, -1);
   }
-  if (!execute(*path, physics::GripperAction::None, -1)) {
-    OMPL_DEBUG("%s: reaching %s: %s", getName().c_str(), layout.bodies[object].name.c_str(),
-               physics::toString(plan_.violation));
-    return false;
-  }
+  if (!reached) return false;
 
   physics::World& world = context_.world();
   world.writeState(now().data());
