@@ -12,7 +12,8 @@ namespace kautham::physics {
 /// OMPL state space of the whole world: every dynamic body's pose and velocity, plus the
 /// contact events of the step that produced the state (see WorldLayout).
 /// Distances are between end-effector positions: that is what "closer to the goal" means to
-/// the planners, and the objects' states are consequences, not choices.
+/// the planners, and the objects' states are consequences, not choices. For a configuration
+/// goal they are between joint values instead (measureJoints).
 class WorldStateSpace : public ompl::base::RealVectorStateSpace {
  public:
   /// `workspace` is where the end effector may go: it bounds the sampled end-effector
