@@ -23,6 +23,14 @@ bool ControlSet::moves(std::size_t dof) const {
   return matrix.row(static_cast<Eigen::Index>(dof)).cwiseAbs().maxCoeff() > 0.0;
 }
 
+void ControlSet::keepFirst(std::size_t count, const std::vector<double>& at) {
+  const auto kept = static_cast<Eigen::Index>(count);
+  for (Eigen::Index j = kept; j < matrix.cols(); ++j)
+    offset += matrix.col(j) * (at[static_cast<std::size_t>(j)] - 0.5);
+  matrix.conservativeResize(Eigen::NoChange, kept);
+  names.resize(count);
+}
+
 Eigen::VectorXd ControlSet::normalizedConfiguration(const std::vector<double>& controls) const {
   Eigen::VectorXd c = Eigen::Map<const Eigen::VectorXd>(controls.data(),
                                                         static_cast<Eigen::Index>(controls.size()));

@@ -541,6 +541,52 @@ class ProblemReader {
     for (const XMLElement* q = queries->FirstChildElement(); q; q = q->NextSiblingElement())
       readQuery(*q);
     if (problem_.queries.empty()) xml_.fail(*queries, "<Queries> has no <Query>");
+    applyControlDimensions();
+  }
+
+  /// Kautham's 2D physics planners (KnowledgeOrientedKPIECE2DPlanner, ...) push the robot with
+  /// the first `Control Dimensions` controls only (a force along x and y): the others stay where
+  /// the query puts them. Its Sphere demos name a third control, z, which here would let the
+  /// sphere leave the floor it slides on in Kautham (it passes through the ground, as a robot
+  /// does here). The controls past that count are kept where every query has them; if the
+  /// queries move one, all controls stay, with a warning.
+  void applyControlDimensions() {
+    const auto given =
+        std::find_if(problem_.planner.parameters.begin(), problem_.planner.parameters.end(),
+                     [](const PlannerParameter& p) { return p.name == "Control Dimensions"; });
+    if (given == problem_.planner.parameters.end()) return;
+    ControlSet& controls = problem_.robot.controls;
+    char* end = nullptr;
+    const long count = std::strtol(given->value.c_str(), &end, 10);
+    if (*end != '\0' || count <= 0 || static_cast<std::size_t>(count) >= controls.size()) return;
+    const auto kept = static_cast<std::size_t>(count);
+    std::vector<std::optional<double>> at(controls.size());
+    for (const Query& query : problem_.queries)
+      for (const std::vector<double>* values : {&query.init, &query.goal.controls})
+        for (std::size_t j = kept; j < values->size(); ++j) {
+          if (at[j] && std::abs(*at[j] - (*values)[j]) > 1e-12) {
+            warning(given->where.str() + ": Kautham's 'Control Dimensions' " + given->value +
+                    " would hold control '" + controls.names[j] +
+                    "' still, but the queries move it: all " + std::to_string(controls.size()) +
+                    " controls are planned");
+            return;
+          }
+          at[j] = (*values)[j];
+        }
+    std::vector<double> values(controls.size(), 0.5);
+    std::string held;
+    for (std::size_t j = kept; j < controls.size(); ++j) {
+      values[j] = at[j].value_or(0.5);
+      held += (held.empty() ? "'" : ", '") + controls.names[j] + "'";
+    }
+    warning(given->where.str() + ": Kautham's 'Control Dimensions' " + given->value +
+            ": its planner drives the first " + given->value + " of the " +
+            std::to_string(controls.size()) + " controls; " + held +
+            (kept + 1 == controls.size() ? " stays" : " stay") + " where the queries put it");
+    controls.keepFirst(kept, values);
+    for (Query& query : problem_.queries)
+      for (std::vector<double>* v : {&query.init, &query.goal.controls})
+        if (v->size() > kept) v->resize(kept);
   }
 
   void readParameters(const XMLElement& parameters) {

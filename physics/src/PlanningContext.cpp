@@ -95,6 +95,7 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
 
   goal_ =
       std::make_shared<WorkspaceGoal>(si_, layout_, makeGoalSpec(problem_, query().goal, *layout_));
+  if (!goal_->spec().joints.empty()) space_->measureJoints();
   pdef_ = std::make_shared<ompl::base::ProblemDefinition>(si_);
   ompl::base::ScopedState<> start(space_);
   std::copy(start_.begin(), start_.end(), WorldStateSpace::values(start.get()));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kautham/physics/JointDistance.h"
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::physics {
@@ -109,13 +110,8 @@ double WorkspaceGoal::approachError(const double* state) const {
 }
 
 double WorkspaceGoal::jointError(const double* state) const {
-  double sum = 0.0;
-  for (std::size_t j = 0; j < spec_.joints.size(); ++j) {
-    const double d = (state[layout_->jointPositionIndex() + j] - spec_.joints[j]) /
-                     std::max(spec_.jointRanges[j], 1e-9);
-    sum += d * d;
-  }
-  return std::sqrt(sum);
+  return jointDistance(layout_->joints, state + layout_->jointPositionIndex(), spec_.joints.data(),
+                       spec_.jointRanges);
 }
 
 }  // namespace kautham::physics

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kautham/physics/EndEffectorProjection.h"
+#include "kautham/physics/JointDistance.h"
 
 namespace kautham::physics {
 
@@ -59,7 +60,10 @@ void WorldStateSpace::registerProjections() {
 }
 
 double WorldStateSpace::distance(const ompl::base::State* a, const ompl::base::State* b) const {
-  return (layout_->goalLinkPosition(values(a)) - layout_->goalLinkPosition(values(b))).norm();
+  if (jointRanges_.empty())
+    return (layout_->goalLinkPosition(values(a)) - layout_->goalLinkPosition(values(b))).norm();
+  const std::size_t joints = layout_->jointPositionIndex();
+  return jointDistance(layout_->joints, values(a) + joints, values(b) + joints, jointRanges_);
 }
 
 }  // namespace kautham::physics

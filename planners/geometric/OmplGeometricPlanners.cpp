@@ -14,6 +14,7 @@
 #include <ompl/geometric/planners/rrt/RRTstar.h>
 
 #include "kautham/planners/PlannerEntry.h"
+#include "kautham/planners/geometric/ComponentPRM.h"
 #include "kautham/planners/geometric/GeometricPlanner.h"
 
 namespace kautham::planners {
@@ -95,8 +96,10 @@ void registerOmplGeometricPlanners(PlannerRegistry& registry) {
            .byDefault(100)
            .range(1, 1000000)
            .describe("samples added to the graph in each batch")}));
-  registry.add(geometricEntry<ompl::geometric::PRM>(
-      "PRM", "geometric: OMPL's probabilistic roadmap (no physics while planning)",
+  registry.add(geometricEntry<geometric::ComponentPRM>(
+      "PRM",
+      "geometric: OMPL's probabilistic roadmap, edges only between its components, as Kautham's "
+      "omplPRM (no physics while planning)",
       {Parameter::integer("max_nearest_neighbors")
            .byDefault(10)
            .range(1, 1000)

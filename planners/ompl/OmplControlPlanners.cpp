@@ -50,11 +50,15 @@ PlannerRegistry::Entry sst() {
        Parameter::real("selection_radius")
            .byDefault(0.2)
            .range(0.0, 100.0)
-           .describe("m of end-effector distance within which the best node is expanded"),
+           .describe("m of end-effector distance (with a configuration goal: of joint distance, m "
+                     "and rad) within which the best node is expanded")
+           .alias("SelectionRadius"),
        Parameter::real("pruning_radius")
            .byDefault(0.1)
            .range(0.0, 100.0)
-           .describe("m of end-effector distance that one witness covers")});
+           .describe("m of end-effector distance (with a configuration goal: of joint distance, m "
+                     "and rad) that one witness covers")
+           .alias("PruningRadius")});
 }
 
 PlannerRegistry::Entry est() {

@@ -297,6 +297,40 @@ TEST(KauthamMobileBase, ABaseDofWithoutLimitsIsAnErrorNamingTheFix) {
   }
 }
 
+TEST(KauthamControlDimensions, ThePlannerDrivesTheFirstControlsAndTheOthersStayPut) {
+  Warnings warnings;
+  const Problem problem = loadProblem(compatFile("control_dimensions.xml"));
+  EXPECT_EQ(problem.robot.controls.names, (std::vector<std::string>{"mover/x", "mover/y"}));
+  EXPECT_EQ(warnings.count("control_dimensions.xml:19: Kautham's 'Control Dimensions' 2: its "
+                           "planner drives the first 2 of the 3 controls; 'mover/x3' stays where "
+                           "the queries put it"),
+            1);
+  const KinematicModel& model = problem.robot.model;
+  ASSERT_EQ(model.movableJoints().size(), 3u);
+  EXPECT_FALSE(problem.robot.controls.moves(2));  // base_X3: held, no control turns it
+  // The start is where the three controls put it: x = 0, y = 0.5, turned by 2 pi (0.25 + 0.25).
+  const Query& query = problem.queries.at(0);
+  EXPECT_EQ(query.init.size(), 2u);
+  EXPECT_EQ(query.goal.controls.size(), 2u);
+  const std::vector<double> start = problem.initialJointValues(query);
+  const auto poses = model.linkPoses(problem.robot.home.isometry(), start);
+  const Eigen::Isometry3d body = poses[static_cast<std::size_t>(*model.findLink("body"))];
+  EXPECT_TRUE(body.translation().isApprox(Eigen::Vector3d(0.0, 0.5, 0.03), 1e-9))
+      << body.translation().transpose();
+  EXPECT_TRUE((body.linear() * Eigen::Vector3d::UnitX()).isApprox(-Eigen::Vector3d::UnitX(), 1e-9));
+  EXPECT_TRUE(problem.goalPosition(query.goal).isApprox(Eigen::Vector3d(0.5, 1, 0.03)));
+}
+
+TEST(KauthamControlDimensions, AControlTheQueriesMoveIsPlannedWithAWarning) {
+  Warnings warnings;
+  const Problem problem = loadProblem(compatFile("control_dimensions_moved.xml"));
+  EXPECT_EQ(problem.robot.controls.size(), 3u);
+  EXPECT_EQ(problem.queries.at(0).goal.controls.size(), 3u);
+  EXPECT_EQ(warnings.count("Kautham's 'Control Dimensions' 2 would hold control 'mover/x3' still, "
+                           "but the queries move it: all 3 controls are planned"),
+            1);
+}
+
 // ----- Kautham's own demos (../shared/kautham-demos), when they are there -----
 
 TEST(KauthamDemos, EveryProblemFileLoads) {

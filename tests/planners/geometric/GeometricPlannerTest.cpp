@@ -2,14 +2,21 @@
 // scene without physics, inverse kinematics for pose goals, and plans that the physics
 // executes, on the real problem files.
 
+#include <algorithm>
 #include <random>
+#include <set>
+#include <utility>
 
 #include <gtest/gtest.h>
+#include <ompl/base/PlannerData.h>
+#include <ompl/base/ProblemDefinition.h>
+#include <ompl/base/ScopedState.h>
 #include <ompl/util/Console.h>
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/Solve.h"
+#include "kautham/planners/geometric/ComponentPRM.h"
 #include "kautham/planners/geometric/GeometricQuery.h"
 
 namespace kautham::planners {
@@ -168,6 +175,34 @@ Planned plan(const std::string& file, const std::string& planner, std::uint32_t 
   run.outcome = solve(context, request);
   run.replay = physics::replay(context, run.outcome.controls);
   return run;
+}
+
+// Kautham's omplPRM tries edges only between components; so does our PRM. Its roadmap is then a
+// forest: every edge joined two components, so there are fewer edges than vertices.
+TEST(ComponentPRMTest, EveryEdgeJoinsTwoComponentsSoTheRoadmapIsAForest) {
+  Scene scene("problems/kautham/kuka_table_rrtconnect.xml");
+  const ompl::base::SpaceInformationPtr& si = scene.query.spaceInformation();
+  auto pdef = std::make_shared<ompl::base::ProblemDefinition>(si);
+  ompl::base::ScopedState<> start(si->getStateSpace());
+  for (std::size_t i = 0; i < si->getStateDimension(); ++i)
+    start[i] = scene.query.joints().start()[i];
+  pdef->addStartState(start);
+  pdef->setGoal(scene.query.problemGoal());
+  geometric::ComponentPRM prm(si);
+  prm.setProblemDefinition(pdef);
+  prm.setup();
+  for (int round = 0; round < 200 && prm.milestoneCount() < 40; ++round) prm.growRoadmap(0.05);
+  ompl::base::PlannerData data(si);
+  prm.getPlannerData(data);
+  ASSERT_GE(data.numVertices(), 40u);
+  std::set<std::pair<unsigned, unsigned>> edges;
+  for (unsigned v = 0; v < data.numVertices(); ++v) {
+    std::vector<unsigned> out;
+    data.getEdges(v, out);
+    for (unsigned w : out) edges.insert({std::min(v, w), std::max(v, w)});
+  }
+  EXPECT_GT(edges.size(), 0u);
+  EXPECT_LT(edges.size(), data.numVertices());
 }
 
 TEST(GeometricPlannerTest, RRTConnectSolvesAConfigurationQueryOfTheKukaAtTheTable) {

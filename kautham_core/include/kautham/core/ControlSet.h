@@ -33,6 +33,10 @@ struct ControlSet {
   std::size_t size() const { return names.size(); }
   /// Whether some control moves the degree of freedom `dof` (else it is held at its offset).
   bool moves(std::size_t dof) const;
+  /// Keeps the first `count` controls; every other control j stays at the normalized value
+  /// `at[j]` for good (its share goes into the offset), so the configurations it reached there
+  /// are unchanged.
+  void keepFirst(std::size_t count, const std::vector<double>& at);
   /// Normalized configuration reached by normalized controls `controls` (one per control).
   Eigen::VectorXd normalizedConfiguration(const std::vector<double>& controls) const;
 };

@@ -29,7 +29,9 @@ struct TrackingSettings {
 
 /// Drives the robot along the straight joint-space segments between the waypoints through the
 /// context's propagator, starting from `start` (a world state): a reference point moves along
-/// the path at the tracking speed and waits at each waypoint; each control (the shortest
+/// the path at the tracking speed and waits at each waypoint (speeding up and slowing down at
+/// what the weakest motor can give, where one cannot reach the speed within one control); each
+/// control (the shortest
 /// control duration) asks for the joint velocity that brings the joints from where they really
 /// are to the reference. Stops at the first invalid state (full validity rules).
 /// The tracked path as OMPL's control path over the context's world states (for the problem
