@@ -495,16 +495,16 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
             blocked ? std::nullopt
                     : planTo(query_.problemGoal(true, coordinatesNow()), ptc, kDirectTry)) {
       if (!execute(*path, physics::GripperAction::None, -1)) continue;
-      reached = context_.goal().reached(now().data());
-      break;
+      if ((reached = context_.goal().reached(now().data()))) break;
+      continue;  // there, but something fills the free space after all: move it next
     }
     if (moves_ == settings_.maxMoves) break;
     clearPath_.reset();
     const std::optional<std::size_t> object = obstruction(ptc);
     if (clearPath_) {
       if (!execute(*clearPath_, physics::GripperAction::None, -1)) continue;
-      reached = context_.goal().reached(now().data());
-      break;
+      if ((reached = context_.goal().reached(now().data()))) break;
+      continue;
     }
     if (object)
       OMPL_DEBUG("%s: moving %s out of the way", getName().c_str(),
