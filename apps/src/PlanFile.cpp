@@ -24,13 +24,23 @@ json poseArray(const double* state, std::size_t body) {
   return json::array({s[0], s[1], s[2], s[3], s[4], s[5], s[6]});
 }
 
+json jointNamesJson(const WorldLayout& layout) {
+  json names = json::array();
+  for (const physics::JointInfo& joint : layout.joints) names.push_back(joint.name);
+  return names;
+}
+
 json trajectoryJson(const WorldLayout& layout, const physics::ReplayResult& replay) {
   json frames = json::array();
   for (const physics::ReplayFrame& frame : replay.frames) {
     json poses = json::array();
     for (std::size_t b = 0; b < layout.bodies.size(); ++b)
       poses.push_back(poseArray(frame.state.data(), b));
-    frames.push_back({{"t", frame.time}, {"poses", poses}, {"touched", frame.touched}});
+    // The robot's joint positions too: what a controller would follow (names in joint_names).
+    const auto first = frame.state.begin() + static_cast<long>(layout.jointPositionIndex());
+    const json joints = std::vector<double>(first, first + static_cast<long>(layout.joints.size()));
+    frames.push_back(
+        {{"t", frame.time}, {"poses", poses}, {"joints", joints}, {"touched", frame.touched}});
   }
   return frames;
 }
@@ -158,6 +168,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
       {"bodies", bodiesJson(layout)},
       {"shapes", shapesJson(layout)},
       {"visuals", visualsJson(context.problem(), layout)},
+      {"joint_names", jointNamesJson(layout)},
       {"frames", trajectoryJson(layout, replay)},
       {"goal",
        {{"position", {goal.x(), goal.y(), goal.z()}},

@@ -50,6 +50,11 @@ TEST_F(PlanCommandTest, DefaultProblemSolvesAndWritesAPlan) {
     for (const auto& b : frame["touched"]) EXPECT_NE(plan["bodies"][b.get<int>()]["role"], "robot");
   }
   EXPECT_GT(framesWithContact, 0u);  // it pushed
+  // The robot's joint positions in every frame, named once: the pusher's x and y joints moved.
+  const std::size_t joints = plan["joint_names"].size();
+  ASSERT_GT(joints, 0u);
+  for (const auto& frame : plan["frames"]) EXPECT_EQ(frame["joints"].size(), joints);
+  EXPECT_NE(plan["frames"].front()["joints"], plan["frames"].back()["joints"]);
   EXPECT_GT(plan["statistics"]["physics_steps"].get<long>(), 0);
   // Every collision shape, for viewers: 3 gripper boxes, the table, the glass, 5 cans.
   EXPECT_EQ(plan["shapes"].size(), 10u);
