@@ -3,9 +3,6 @@
 // speeds (with 0.5 kg carriages under a 25 kg sphere the rates jittered past 1.2 times their
 // limit and nearly every state was rejected as "joint too fast"). A problem written here.
 
-#include <filesystem>
-#include <fstream>
-
 #include <gtest/gtest.h>
 
 #include "physics/PhysicsTestSupport.h"
@@ -13,23 +10,12 @@
 namespace kautham::physics {
 namespace {
 
-namespace fs = std::filesystem;
-
 /// Kautham's SphereDE as its demos scale it: 25 kg, 25 cm radius.
 const char* kHeavySphere = R"(<?xml version="1.0"?>
 <robot name="heavy">
   <link name="ball">
     <inertial><mass value="25"/><inertia ixx="0.625" iyy="0.625" izz="0.625" ixy="0" ixz="0" iyz="0"/></inertial>
     <collision><geometry><sphere radius="0.25"/></geometry></collision>
-  </link>
-</robot>
-)";
-
-const char* kBox = R"(<?xml version="1.0"?>
-<robot name="box">
-  <link name="box">
-    <inertial><mass value="2"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.3 0.3 0.3"/></geometry></collision>
   </link>
 </robot>
 )";
@@ -50,13 +36,10 @@ const char* kProblem = R"(<?xml version="1.0"?>
 )";
 
 TEST(MobileBaseCarriage, AHeavyRobotsBaseKeepsItsSpeedWhilePushing) {
-  const fs::path folder = fs::temp_directory_path() / "kautham_heavy_base";
-  fs::create_directories(folder);
-  std::ofstream(folder / "heavy.urdf") << kHeavySphere;
-  std::ofstream(folder / "box.urdf") << kBox;
-  std::ofstream(folder / "heavy.xml") << kProblem;
-  core::Problem problem = core::loadProblem(folder / "heavy.xml");
-  fs::remove_all(folder);
+  core::Problem problem = test::loadWrittenProblem(
+      "kautham_heavy_base",
+      {{"heavy.urdf", kHeavySphere}, {"box.urdf", test::kBoxUrdf}, {"heavy.xml", kProblem}},
+      "heavy.xml");
 
   const core::KinematicModel& model = problem.robot.model;
   const core::Link& carriage =

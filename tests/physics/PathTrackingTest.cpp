@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -17,8 +15,6 @@
 
 namespace kautham::physics {
 namespace {
-
-namespace fs = std::filesystem;
 
 /// A 25 kg ball with a 5 kg arm turning about the ball's vertical axis, its centre of mass
 /// 0.5 m out.
@@ -36,15 +32,6 @@ const char* kBallWithArm = R"(<?xml version="1.0"?>
     <parent link="ball"/><child link="arm"/><axis xyz="0 0 1"/>
     <limit lower="-3.14159" upper="3.14159" velocity="2" effort="200"/>
   </joint>
-</robot>
-)";
-
-const char* kBox = R"(<?xml version="1.0"?>
-<robot name="box">
-  <link name="box">
-    <inertial><mass value="2"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
-    <collision><geometry><box size="0.3 0.3 0.3"/></geometry></collision>
-  </link>
 </robot>
 )";
 
@@ -68,14 +55,10 @@ const char* kProblem = R"(<?xml version="1.0"?>
 class HeavyBaseTest : public ::testing::Test {
  protected:
   static core::Problem load() {
-    const fs::path folder = fs::temp_directory_path() / "kautham_heavy_base_arm";
-    fs::create_directories(folder);
-    std::ofstream(folder / "ballarm.urdf") << kBallWithArm;
-    std::ofstream(folder / "box.urdf") << kBox;
-    std::ofstream(folder / "heavy.xml") << kProblem;
-    core::Problem problem = core::loadProblem(folder / "heavy.xml");
-    fs::remove_all(folder);
-    return problem;
+    return test::loadWrittenProblem(
+        "kautham_heavy_base_arm",
+        {{"ballarm.urdf", kBallWithArm}, {"box.urdf", test::kBoxUrdf}, {"heavy.xml", kProblem}},
+        "heavy.xml");
   }
 };
 

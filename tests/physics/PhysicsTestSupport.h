@@ -1,6 +1,9 @@
 #pragma once
 
+#include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
@@ -67,5 +70,29 @@ class ContextFixture {
   physics::PlanningContext context;
   std::vector<double> state;
 };
+
+/// A 2 kg, 30 cm box: an obstacle for the small scenes tests write themselves.
+inline const char* const kBoxUrdf = R"(<?xml version="1.0"?>
+<robot name="box">
+  <link name="box">
+    <inertial><mass value="2"/><inertia ixx="0.02" iyy="0.02" izz="0.02" ixy="0" ixz="0" iyz="0"/></inertial>
+    <collision><geometry><box size="0.3 0.3 0.3"/></geometry></collision>
+  </link>
+</robot>
+)";
+
+/// A scene a test writes itself: `files` (name, text) into a temporary folder, the problem
+/// `problemFile` among them loaded, the folder removed.
+inline core::Problem loadWrittenProblem(
+    const std::string& folderName, const std::vector<std::pair<std::string, std::string>>& files,
+    const std::string& problemFile) {
+  namespace fs = std::filesystem;
+  const fs::path folder = fs::temp_directory_path() / folderName;
+  fs::create_directories(folder);
+  for (const auto& [name, text] : files) std::ofstream(folder / name) << text;
+  core::Problem problem = core::loadProblem(folder / problemFile);
+  fs::remove_all(folder);
+  return problem;
+}
 
 }  // namespace kautham::test
