@@ -74,6 +74,7 @@ std::pair<double, double> InverseKinematics::errors(const PoseTarget& target,
 
 std::optional<std::vector<double>> InverseKinematics::solve(const PoseTarget& target,
                                                             const std::vector<double>& seed) const {
+  ++solves_;
   PoseResiduals residuals{joints_, link_, &target,
                           Eigen::Map<const Eigen::VectorXd>(seed.data(), seed.size())};
   Eigen::NumericalDiff<PoseResiduals> differentiated(residuals);

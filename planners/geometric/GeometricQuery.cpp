@@ -7,6 +7,7 @@
 #include <ompl/base/ProblemDefinition.h>
 #include <ompl/base/objectives/PathLengthOptimizationObjective.h>
 #include <ompl/base/spaces/RealVectorStateSpace.h>
+#include <ompl/base/terminationconditions/IterationTerminationCondition.h>
 #include <ompl/geometric/PathGeometric.h>
 #include <ompl/geometric/PathSimplifier.h>
 #include <ompl/util/Console.h>
@@ -16,6 +17,10 @@
 namespace kautham::planners::geometric {
 
 namespace {
+
+/// How often the path simplifier may ask whether to stop: its rounds (at most 5 + 5) ask about
+/// 15 times, so this bounds a pathological run and never a normal one.
+constexpr unsigned kSimplifierChecks = 100;
 
 const double* coordinates(const ompl::base::State* state) {
   return state->as<ompl::base::RealVectorStateSpace::StateType>()->values;
@@ -111,9 +116,10 @@ std::optional<CoordinatePath> GeometricQuery::plan(
   auto& path = static_cast<ompl::geometric::PathGeometric&>(*pdef->getSolutionPath());
   if (simplify && !ptc()) {
     // Without the goal: the simplifier would take any goal sample for a goal state.
+    // Bounded by a count, not a clock, so a fixed seed gives the same path on a busy machine.
     ompl::geometric::PathSimplifier simplifier(si_);
-    simplifier.simplify(path, ompl::base::plannerOrTerminationCondition(
-                                  ptc, ompl::base::timedPlannerTerminationCondition(1.0)));
+    ompl::base::IterationTerminationCondition rounds(kSimplifierChecks);
+    simplifier.simplify(path, ompl::base::plannerOrTerminationCondition(ptc, rounds));
   }
   // A configuration goal is reached within a tolerance; end on the configuration itself when
   // the last motion there is free, so the plan ends in the middle of the goal region.

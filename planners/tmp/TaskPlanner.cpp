@@ -17,6 +17,8 @@ namespace {
 
 using core::Parameter;
 
+/// Collision checks an IK solve is worth (Levenberg-Marquardt with numerical derivatives).
+constexpr double kIkSolveWork = 10.0;
 /// m: a grasp holds when the gripper's origin is this close to the object's bounding box.
 constexpr double kGraspReach = 0.02;
 /// m: a placed object is released this high above where it stood, and drops onto the table.
@@ -52,11 +54,13 @@ physics::PoseTarget pose(const Eigen::Isometry3d& gripper, double tolerance) {
 core::SettingsParameters<TaskSettings> TaskSettings::parameters(bool withUncertainty) {
   core::SettingsParameters<TaskSettings> table;
   table
-      .add(&TaskSettings::subQueryTime,
-           Parameter::real("sub_query_time")
-               .byDefault(2.0)
-               .range(0.01, 3600.0)
-               .describe("seconds each geometric sub-query (a reach, a carry) may take at most"))
+      .add(&TaskSettings::subQueryWork,
+           Parameter::integer("sub_query_work")
+               .byDefault(kDefaultSubQueryWork)
+               .range(100, 1000000000)
+               .describe("work each geometric sub-query (a reach, a carry) may take at most, in "
+                         "collision checks (an IK solve counts as 10): counted, not timed, so "
+                         "a fixed seed gives the same plan on a busy machine"))
       .add(&TaskSettings::maxMoves, Parameter::integer("max_moves")
                                         .byDefault(20)
                                         .range(0, 1000)
@@ -144,14 +148,21 @@ bool TaskPlanner::reachable(const ompl::base::Goal& goal) {
 }
 
 std::optional<geometric::CoordinatePath> TaskPlanner::planTo(const ompl::base::GoalPtr& goal,
-                                                             const Ptc& ptc, double seconds) {
+                                                             const Ptc& ptc, double share) {
   ++subQueries_;
   query_.checker().setScene(now().data());
-  const double budget = std::min(seconds, settings_.subQueryTime);
+  // Counted, not timed: a budget in seconds made outcomes depend on the machine's load. Time
+  // goes to collision checks (about 13,000 a second here) and, while goals are sampled, to IK.
+  const double budget = share * static_cast<double>(settings_.subQueryWork);
+  const std::uint64_t checks = query_.checker().checks();
+  const std::uint64_t solves = query_.ik().solves();
+  const ompl::base::PlannerTerminationCondition spent([&] {
+    return static_cast<double>(query_.checker().checks() - checks) +
+               kIkSolveWork * static_cast<double>(query_.ik().solves() - solves) >
+           budget;
+  });
   return query_.plan(coordinatesNow(), goal, *motionPlanner_,
-                     ompl::base::plannerOrTerminationCondition(
-                         ptc, ompl::base::timedPlannerTerminationCondition(budget)),
-                     true);
+                     ompl::base::plannerOrTerminationCondition(ptc, spent), true);
 }
 
 bool TaskPlanner::execute(const geometric::CoordinatePath& path, physics::GripperAction action,
@@ -490,7 +501,7 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
     const bool blocked = context_.goal().freeSpaceBlocker(now().data()).has_value();
     // A short try: when the way is clear RRTConnect finds it in a fraction of a second, and
     // the obstruction query below finds the way otherwise.
-    constexpr double kDirectTry = 1.0;  // s
+    constexpr double kDirectTry = 0.5;  // of a sub-query's work
     if (const auto path =
             blocked ? std::nullopt
                     : planTo(query_.problemGoal(true, coordinatesNow()), ptc, kDirectTry)) {

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -30,12 +32,15 @@ class InverseKinematics {
   /// Coordinates near `seed` that put the link on the target within its tolerances, or none.
   std::optional<std::vector<double>> solve(const PoseTarget& target,
                                            const std::vector<double>& seed) const;
+  /// How many times solve() has run: a measure of work that does not depend on the clock.
+  std::uint64_t solves() const { return solves_; }
   /// Position error (m) and the larger axis error (rad) at coordinates `c`.
   std::pair<double, double> errors(const PoseTarget& target, const std::vector<double>& c) const;
 
  private:
   const JointSpace* joints_;
   int link_;
+  mutable std::atomic<std::uint64_t> solves_{0};
 };
 
 }  // namespace kautham::physics

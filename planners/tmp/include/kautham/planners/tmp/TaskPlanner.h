@@ -15,14 +15,18 @@
 
 namespace kautham::planners::tmp {
 
+/// About 2 s of RRTConnect on the development machine (13,000 collision checks a second).
+constexpr int kDefaultSubQueryWork = 25000;
+
 struct TaskSettings {
-  bool uncertainty = false;   ///< TMP-U: movable objects inflated by their pose uncertainty
-  double sigmas = 3.0;        ///< k: the inflation is k standard deviations of x and y
-  double subQueryTime = 2.0;  ///< s: at most this for each geometric sub-query
-  int maxMoves = 20;          ///< objects moved at most, before giving up
-  double speed = 0.5;         ///< joint speed along paths, a fraction of the limits
-  double clearance = 0.002;   ///< m kept from every obstacle while planning
-  double graspGap = 0.01;     ///< m between the object's top and the gripper's origin
+  bool uncertainty = false;  ///< TMP-U: movable objects inflated by their pose uncertainty
+  double sigmas = 3.0;       ///< k: the inflation is k standard deviations of x and y
+  /// Work each geometric sub-query may take, in collision checks (IK solves count 10)
+  int subQueryWork = kDefaultSubQueryWork;
+  int maxMoves = 20;         ///< objects moved at most, before giving up
+  double speed = 0.5;        ///< joint speed along paths, a fraction of the limits
+  double clearance = 0.002;  ///< m kept from every obstacle while planning
+  double graspGap = 0.01;    ///< m between the object's top and the gripper's origin
 
   static core::SettingsParameters<TaskSettings> parameters(bool withUncertainty);
 };
@@ -55,9 +59,9 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   bool reachable(const ompl::base::Goal& goal);
   /// Whether IK puts the gripper on `target` at all, obstacles aside.
   bool withinReach(const physics::PoseTarget& target);
-  /// A geometric plan from where the arm is now, within `seconds` and the sub-query time.
+  /// A geometric plan from where the arm is now, within `share` of a sub-query's work.
   std::optional<geometric::CoordinatePath> planTo(const ompl::base::GoalPtr& goal, const Ptc& ptc,
-                                                  double seconds = 1e9);
+                                                  double share = 1.0);
   /// Drives the path through the physics from now(); the first control carries `action`.
   bool execute(const geometric::CoordinatePath& path, physics::GripperAction action, int object);
   bool holdStill(physics::GripperAction action, unsigned steps);
