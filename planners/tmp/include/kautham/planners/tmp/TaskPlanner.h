@@ -15,7 +15,7 @@
 
 namespace kautham::planners::tmp {
 
-/// About 2 s of RRTConnect on the development machine (13,000 collision checks a second).
+/// About 2 s of RRTConnect on the development machine (13,000 to 18,000 checks a second).
 constexpr int kDefaultSubQueryWork = 25000;
 
 struct TaskSettings {
