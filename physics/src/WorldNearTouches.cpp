@@ -44,6 +44,7 @@ RobotTouches World::robotTouchesNear(int heldBody, double margin) {
   nearPairs_.clear();
   nearBodies_.clear();
   nearHeldBody_ = heldBody;
+  nearTriangles_ = false;
   std::vector<dGeomID> geoms;
   leafGeoms(space_, geoms);
   const auto moving = [heldBody](const GeomTag& tag) {
@@ -67,7 +68,10 @@ RobotTouches World::robotTouchesNear(int heldBody, double margin) {
       if (!(dGeomGetCategoryBits(a) & dGeomGetCollideBits(b)) &&
           !(dGeomGetCategoryBits(b) & dGeomGetCollideBits(a)))
         continue;
-      if (boxesWithin(a, b, margin)) nearPairs_.emplace_back(a, b);
+      if (!boxesWithin(a, b, margin)) continue;
+      nearPairs_.emplace_back(a, b);
+      const int kind = dGeomGetClass(b);
+      nearTriangles_ |= kind == dTriMeshClass || kind == dHeightfieldClass;
     }
   }
   return touches;
@@ -78,11 +82,16 @@ RobotTouches World::robotTouchesShifted(const Eigen::Vector3d& offset) {
     const Eigen::Vector3d to = from + offset;
     dBodySetPosition(body, to.x(), to.y(), to.z());
   }
+  // ODE's colliders against triangle meshes pick the triangles by the other geometry's bounding
+  // box: those must be where the bodies now are (a cube shifted into the S-passage's mesh walls
+  // was found touching nothing).
+  if (nearTriangles_) dSpaceClean(space_);
   RobotTouches touches;
   touches_ = &touches;
   heldBody_ = nearHeldBody_;
   for (const auto& [a, b] : nearPairs_) recordTouch(a, b);
   touches_ = nullptr;
+  shiftedAside_ = true;
   std::sort(touches.bodies.begin(), touches.bodies.end());
   touches.bodies.erase(std::unique(touches.bodies.begin(), touches.bodies.end()),
                        touches.bodies.end());

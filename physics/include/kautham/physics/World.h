@@ -162,6 +162,10 @@ class World {
   std::vector<std::pair<dGeomID, dGeomID>> nearPairs_;
   std::vector<std::pair<dBodyID, Eigen::Vector3d>> nearBodies_;
   int nearHeldBody_ = -1;
+  /// robotTouchesShifted() moved bodies without bringing their bounding boxes up to date.
+  bool shiftedAside_ = false;
+  /// Some of nearPairs_ pair a moving geometry with a triangle mesh or a heightfield.
+  bool nearTriangles_ = false;
 };
 
 }  // namespace kautham::physics
