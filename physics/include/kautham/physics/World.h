@@ -96,7 +96,8 @@ class World {
   /// What robotTouches() finds with the moving bodies of the last robotTouchesNear() moved by
   /// `offset` (no component above its margin), testing only the remembered pairs. Moving a body
   /// makes ODE recompute its bounding boxes at the next space-wide test, which for convex hulls
-  /// of a thousand vertices was most of a geometric planner's time; this path needs none.
+  /// of a thousand vertices was most of a geometric planner's time; this path needs none,
+  /// except where a triangle mesh is near (ODE picks its triangles by the other box).
   /// Leaves the moving bodies moved: write a state before anything else.
   RobotTouches robotTouchesShifted(const Eigen::Vector3d& offset);
   /// Fixes the object `body` to the gripper (the goal link's body) where it is now, with an
