@@ -209,10 +209,11 @@ std::set<std::string> addMobileBase(KinematicModel& model, const std::vector<Bas
       // limits (the Sphere demos: Home at (10, 10), limits [-5, 5]), so it holds the robot 8
       // to 15 m away. With the inertia of a 10 cm radius of gyration, the solver's small
       // errors in the carriage's rotation (0.05 rad/s) swung the robot at that distance past
-      // 1.2 times its speed limit across the joints' axes (3 % of the states KPIECE reached).
+      // 1.2 times its speed limit across the joints' axes (3 % of the states of a tree of
+      // random pushes).
       // A carriage turns as hard as its mass would at the middle of the robot's travel (the
       // parallel-axis inertia of that point; none is added about the line to it: an isotropic
-      // m L^2 made the TX90's base, 0.8 m from its travel's middle, break the link speed rule
+      // m L^2 made the TX90's base, 0.5 m from its travel's middle, break the link speed rule
       // while tracking PRM's paths).
       const Eigen::Vector3d lever = middleOfTravel(joints, i);
       carriage.inertial.inertia =
