@@ -16,7 +16,8 @@ namespace {
 // 0.5 kg carriages under Kautham's 25 kg sphere or 28 kg Tiago made the base joints' rates
 // jitter past 1.2 times their limit ("joint too fast" was 97 % of Tiago's rejected states).
 constexpr double kMinCarriageMass = 0.1;    // kg, for robots whose URDF gives no mass
-constexpr double kCarriageGyration = 0.01;  // m^2: inertia per kg (a 10 cm radius of gyration)
+constexpr double kCarriageGyration = 0.01;  // m^2: inertia per kg (a 10 cm radius of gyration),
+                                            // at least; see addMobileBase
 constexpr double kTurnVelocity = 1.0;       ///< rad/s of base_X3 (Kautham gives none)
 constexpr double kTurnEffort = 100.0;       ///< N m
 
@@ -45,6 +46,17 @@ std::string dofName(const std::string& full) {
 
 bool isBaseDof(const std::string& name) {
   return name == "X" || name == "Y" || name == "Z" || name == "X1" || name == "X2" || name == "X3";
+}
+
+/// Where the robot's root sits, in the frame of the carriage before joint `first`, when the
+/// translations from `first` on are at the middle of their ranges.
+Eigen::Vector3d middleOfTravel(const std::vector<Joint>& joints, int first) {
+  Eigen::Vector3d middle = Eigen::Vector3d::Zero();
+  for (std::size_t j = static_cast<std::size_t>(first); j < joints.size(); ++j) {
+    if (joints[j].type != JointType::Prismatic) break;  // rotated frames follow
+    middle += joints[j].axis * 0.5 * (joints[j].lower + joints[j].upper);
+  }
+  return middle;
 }
 
 }  // namespace
@@ -193,7 +205,20 @@ std::set<std::string> addMobileBase(KinematicModel& model, const std::vector<Bas
       carriage.name = "mobile_" + joints[static_cast<std::size_t>(i) - 1].name;
       carriage.parentJoint = i - 1;
       carriage.inertial.mass = carriageMass;
-      carriage.inertial.inertia = Eigen::Matrix3d::Identity() * carriageMass * kCarriageGyration;
+      // A carriage sits at the base's <Home>, which Kautham's demos may put far outside the
+      // limits (the Sphere demos: Home at (10, 10), limits [-5, 5]), so it holds the robot 8
+      // to 15 m away. With the inertia of a 10 cm radius of gyration, the solver's small
+      // errors in the carriage's rotation (0.05 rad/s) swung the robot at that distance past
+      // 1.2 times its speed limit across the joints' axes (3 % of the states of a tree of
+      // random pushes).
+      // A carriage turns as hard as its mass would at the middle of the robot's travel (the
+      // parallel-axis inertia of that point; none is added about the line to it: an isotropic
+      // m L^2 made the TX90's base, 0.5 m from its travel's middle, break the link speed rule
+      // while tracking PRM's paths).
+      const Eigen::Vector3d lever = middleOfTravel(joints, i);
+      carriage.inertial.inertia =
+          carriageMass * (Eigen::Matrix3d::Identity() * (kCarriageGyration + lever.squaredNorm()) -
+                          lever * lever.transpose());
     }
   }
   model.links[static_cast<std::size_t>(model.rootLink - count)].parentJoint = count - 1;

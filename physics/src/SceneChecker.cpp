@@ -52,22 +52,22 @@ RobotTouches SceneChecker::touchesShifted(std::vector<double> state,
     double* p = state.data() + b * WorldLayout::kBodyStateSize + WorldLayout::kPosition;
     for (int k = 0; k < 3; ++k) p[k] += offset[k];
   }
-  RobotTouches touches;
-  {
-    const std::lock_guard<std::mutex> lock(worldMutex_);
-    world_->writeState(state.data());
-    touches = world_->robotTouches(held_ ? static_cast<int>(held_->body) : -1);
-  }
-  if (obstacles_ == Obstacles::FixedOnly) {
-    // Movable objects are no obstacles here; the target still is.
-    touches.bodies.erase(std::remove_if(touches.bodies.begin(), touches.bodies.end(),
-                                        [&layout, this](int b) {
-                                          const auto body = static_cast<std::size_t>(b);
-                                          return layout.bodies[body].role == BodyRole::Movable &&
-                                                 !solid_.count(body);
-                                        }),
-                         touches.bodies.end());
-  }
+  const std::lock_guard<std::mutex> lock(worldMutex_);
+  world_->writeState(state.data());
+  return obstaclesOnly(world_->robotTouches(heldBody()));
+}
+
+RobotTouches SceneChecker::obstaclesOnly(RobotTouches touches) const {
+  if (obstacles_ != Obstacles::FixedOnly) return touches;
+  // Movable objects are no obstacles here; the target still is.
+  const WorldLayout& layout = world_->layout();
+  touches.bodies.erase(std::remove_if(touches.bodies.begin(), touches.bodies.end(),
+                                      [&layout, this](int b) {
+                                        const auto body = static_cast<std::size_t>(b);
+                                        return layout.bodies[body].role == BodyRole::Movable &&
+                                               !solid_.count(body);
+                                      }),
+                       touches.bodies.end());
   return touches;
 }
 
@@ -75,17 +75,21 @@ RobotTouches SceneChecker::touchesAt(const double* c) const { return touchesOf(s
 
 RobotTouches SceneChecker::touchesOf(const std::vector<double>& state) const {
   ++checks_;
-  RobotTouches touches = touchesShifted(state, Eigen::Vector3d::Zero());
+  // The shifted tests below move the robot by at most this much along an axis.
+  const double reach = objectMargin_ > 0.0 ? objectMargin_ + clearance_ : clearance_;
+  const std::lock_guard<std::mutex> lock(worldMutex_);
+  world_->writeState(state.data());
+  RobotTouches touches = obstaclesOnly(world_->robotTouchesNear(heldBody(), reach));
   for (const Eigen::Vector3d& shift : shifts_) {
     if (touches.any()) break;
-    touches = touchesShifted(state, shift);
+    touches = obstaclesOnly(world_->robotTouchesShifted(shift));
   }
   if (objectMargin_ > 0.0 && !touches.any()) {
     const WorldLayout& layout = world_->layout();
-    const double m = objectMargin_ + clearance_;
+    const double m = reach;
     for (const Eigen::Vector3d& shift : {Eigen::Vector3d(m, 0, 0), Eigen::Vector3d(-m, 0, 0),
                                          Eigen::Vector3d(0, m, 0), Eigen::Vector3d(0, -m, 0)}) {
-      for (int body : touchesShifted(state, shift).bodies)
+      for (int body : obstaclesOnly(world_->robotTouchesShifted(shift)).bodies)
         if (layout.bodies[static_cast<std::size_t>(body)].role == BodyRole::Movable)
           touches.bodies.push_back(body);
       if (touches.any()) break;

@@ -65,6 +65,12 @@ void World::restoreGeomOrder() {
   // dirties bodies island by island: the order of the list, hence of contacts and of the
   // solver's constraints, would carry the previous step's contacts into the next. Re-adding
   // the dynamic geometries in a fixed order makes every run from a written state the same.
+  // ODE finds the geometries whose bounding boxes are out of date at the front of that list
+  // (it moves one there when it first moves), so those robotTouchesShifted() moved are brought
+  // up to date before the order is restored: behind a geometry that has not moved, a later
+  // collision test would use their old boxes and miss touches.
+  if (shiftedAside_) dSpaceClean(space_);
+  shiftedAside_ = false;
   for (dGeomID geom : dynamicGeoms_) dSpaceRemove(space_, geom);
   for (dGeomID geom : dynamicGeoms_) dSpaceAdd(space_, geom);
 }

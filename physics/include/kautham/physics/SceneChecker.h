@@ -82,6 +82,9 @@ class SceneChecker : public ompl::base::StateValidityChecker {
   RobotTouches touchesOf(const std::vector<double>& state) const;
   /// Touches of the robot placed as in `state` shifted by `offset`.
   RobotTouches touchesShifted(std::vector<double> state, const Eigen::Vector3d& offset) const;
+  /// `touches` without the movable objects that are no obstacles (setObstacles).
+  RobotTouches obstaclesOnly(RobotTouches touches) const;
+  int heldBody() const { return held_ ? static_cast<int>(held_->body) : -1; }
 
   std::optional<HeldObject> held_;
   double clearance_ = 0.0;
