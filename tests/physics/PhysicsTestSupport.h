@@ -1,5 +1,7 @@
 #pragma once
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -87,7 +89,10 @@ inline core::Problem loadWrittenProblem(
     const std::string& folderName, const std::vector<std::pair<std::string, std::string>>& files,
     const std::string& problemFile) {
   namespace fs = std::filesystem;
-  const fs::path folder = fs::temp_directory_path() / folderName;
+  // One folder per process: CTest runs tests in parallel processes, and two tests that
+  // write the same scene must not remove each other's files.
+  const fs::path folder =
+      fs::temp_directory_path() / (folderName + "_" + std::to_string(::getpid()));
   fs::create_directories(folder);
   for (const auto& [name, text] : files) std::ofstream(folder / name) << text;
   core::Problem problem = core::loadProblem(folder / problemFile);

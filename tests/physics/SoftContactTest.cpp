@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include "TestPaths.h"
@@ -60,9 +62,12 @@ std::string problemText(const std::string& erp, const std::string& cfm) {
 
 class SoftContactTest : public ::testing::Test {
  protected:
+  // One folder per process: CTest runs these tests in parallel processes, and a shared folder
+  // (gtest's random seed, which comes from the clock, named it before) was removed by one
+  // test's TearDown while another wrote into it.
   fs::path folder =
-      fs::temp_directory_path() /
-      ("kautham_soft_contact_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+      fs::temp_directory_path() / ("kautham_soft_contact_" + std::to_string(::getpid()) + "_" +
+                                   ::testing::UnitTest::GetInstance()->current_test_info()->name());
   void SetUp() override {
     fs::create_directories(folder);
     std::ofstream(folder / "box.urdf") << kBox;
