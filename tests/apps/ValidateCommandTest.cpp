@@ -3,6 +3,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -34,8 +36,8 @@ class ValidateCommandTest : public test::TemporaryFolderTest {
   static void TearDownTestSuite() { fs::remove_all(planFolder()); }
   static fs::path planFolder() {
     return fs::temp_directory_path() /
-           ("kautham_validate_" +
-            std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+           ("kautham_validate_" + std::to_string(::getpid()));  // one per process: CTest runs
+                                                                // tests in parallel processes
   }
   static fs::path plan() { return planFolder() / "plan.json"; }
   static std::string quoted(const fs::path& file) { return "'" + file.string() + "'"; }
