@@ -287,7 +287,6 @@ bool TaskPlanner::grasp(std::size_t object, const Ptc& ptc) {
     outOfReach_.insert(object);
     return false;
   }
-  setObjectMargin(object);
   const ompl::base::GoalPtr goal = poseGoal(*target);
   if (!reachable(*goal)) {
     OMPL_DEBUG("%s: no collision-free grasp of %s", getName().c_str(),
@@ -476,8 +475,8 @@ PlacementRules TaskPlanner::placementRules(std::size_t moved) const {
   return rules;
 }
 
-void TaskPlanner::setObjectMargin(std::optional<std::size_t> except) {
-  (void)except;  // the margin applies to every movable object; see docs/planners.md
+void TaskPlanner::setObjectMargin() {
+  // The same margin for every movable object, all run long; see docs/planners.md.
   if (!settings_.uncertainty) return;
   double sigma = 0.0;
   for (const core::ObjectInstance& object : context_.problem().objects)
@@ -490,12 +489,12 @@ ompl::base::PlannerStatus TaskPlanner::solve(const Ptc& ptc) {
   clear();
   plan_.states.push_back(context_.startState());
   query_.setClearance(settings_.clearance);
+  setObjectMargin();
   context_.world().release();
   bool reached = false;
   // Every try moves an object or marks it unmovable; failed tries are bounded too.
   const int maxTries = 3 * settings_.maxMoves + 3;
   for (int attempt = 0; attempt < maxTries && !ptc(); ++attempt) {
-    setObjectMargin(std::nullopt);
     // An object between the fingers at the pre-grasp: no path can reach the goal, so do not
     // spend a sub-query finding out.
     const bool blocked = context_.goal().freeSpaceBlocker(now().data()).has_value();

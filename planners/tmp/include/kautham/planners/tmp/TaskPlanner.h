@@ -85,7 +85,7 @@ class TaskPlanner : public ompl::base::Planner, public ControlReporter {
   /// Free places for `object` within the arm's reach, farthest from the pre-grasp first; off
   /// every corridor found so far, or only off the latest (when the others leave no room).
   std::vector<Eigen::Vector2d> placesFor(std::size_t object, bool latestCorridorOnly);
-  void setObjectMargin(std::optional<std::size_t> except);
+  void setObjectMargin();
 
   physics::PlanningContext& context_;
   TaskSettings settings_;
