@@ -4,22 +4,58 @@
 #include <cmath>
 
 #include <Eigen/Dense>
+#include <Eigen/Geometry>
 
 namespace kautham::planners {
 
 namespace {
 constexpr double kProbe = 0.5;     // control of a probe step (controls lie in [-1, 1])
 constexpr double kDamping = 1e-3;  // m per step: keeps the least squares tame near singularities
+// Makes a turn comparable to a move for the least squares, as the goal's distance does:
+// turning the gripper by 0.1 rad counts like moving it 1 cm.
+constexpr double kMetresPerRadian = 0.1;
+// The longest straight move a clearing motion aims for: the Jacobian is a linearisation, and
+// the tree steers again from where a shorter move ends.
+constexpr double kMaxStride = 0.1;  // m
+// How fast the goal link goes on the way to a push, and while pushing: a slow push leaves the
+// object upright and below the interaction's speed limit, where the joints' full speed flings it.
+constexpr double kMoveSpeed = 0.3;  // m/s
+constexpr double kPushSpeed = 0.1;  // m/s
+
+/// The rotation vector (axis times angle) of a rotation matrix.
+Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
+  const Eigen::AngleAxisd turn(rotation);
+  return turn.angle() * turn.axis();
+}
 }  // namespace
 
-GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator)
-    : context_(context), evaluator_(evaluator) {}
+GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
+                           bool clearing)
+    : context_(context), evaluator_(evaluator), clearing_(context), clearingOn_(clearing) {}
+
+double GoalSteering::rankDistance(const double* state) const {
+  if (clearingOn_)
+    if (std::optional<ClearingPush::Step> step = clearing_.next(state))
+      return kBlockedRank + step->remaining;
+  return context_.goal().searchDistance(state);
+}
 
 std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) const {
   if (context_.goal().spec().joints.size() > 0) return std::nullopt;
   // While an object fills the goal's free space, the straight move at the goal point only
-  // shoves it on towards the target: the expansion keeps its random candidates instead.
-  if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
+  // shoves it on towards the target: steer the clearing push instead, or (without it) keep
+  // the random candidates.
+  if (context_.goal().freeSpaceBlocker(start)) {
+    if (!clearingOn_) return std::nullopt;
+    const std::optional<ClearingPush::Step> step = clearing_.next(start);
+    if (!step) return std::nullopt;
+    return steer(start, step->waypoint, step->pushing ? kPushSpeed : kMoveSpeed);
+  }
+  return steer(start, context_.goal().position(), 0.0);
+}
+
+std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eigen::Vector3d& target,
+                                                 double maxSpeed) const {
   const auto& si = context_.spaceInformation();
   const auto dimension = static_cast<Eigen::Index>(si->getControlSpace()->getDimension());
   std::vector<NominalMotion> probes(static_cast<std::size_t>(dimension) + 1);
@@ -33,27 +69,72 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
     if (run.steps == 0) return std::nullopt;
   const physics::WorldLayout& layout = context_.layout();
   const Eigen::Vector3d drift = layout.goalLinkPosition(runs[0].end.data());
-  Eigen::MatrixXd jacobian(3, dimension);  // link displacement per step and unit of control
-  for (Eigen::Index i = 0; i < dimension; ++i)
-    jacobian.col(i) =
-        (layout.goalLinkPosition(runs[static_cast<std::size_t>(i) + 1].end.data()) - drift) /
-        kProbe;
-  const Eigen::Vector3d toGo = context_.goal().position() - layout.goalLinkPosition(start);
-  const Eigen::Matrix3d damped =
-      jacobian * jacobian.transpose() + kDamping * kDamping * Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d driftTurn = layout.goalLinkOrientation(runs[0].end.data());
+  // Per step and unit of control: the link's displacement, and its turn in metres
+  // (kMetresPerRadian), with what the goal does not care about projected out.
+  const Eigen::Matrix3d startTurn = layout.goalLinkOrientation(start);
+  const Eigen::Matrix3d turnRows = turnProjection(startTurn);
+  Eigen::MatrixXd jacobian(6, dimension);
+  for (Eigen::Index i = 0; i < dimension; ++i) {
+    const double* probed = runs[static_cast<std::size_t>(i) + 1].end.data();
+    jacobian.col(i).head<3>() = (layout.goalLinkPosition(probed) - drift) / kProbe;
+    jacobian.col(i).tail<3>() =
+        kMetresPerRadian * turnRows *
+        rotationVector(layout.goalLinkOrientation(probed) * driftTurn.transpose()) / kProbe;
+  }
+  Eigen::Matrix<double, 6, 1> toGo;
+  toGo.head<3>() = target - layout.goalLinkPosition(start);
+  toGo.tail<3>() = kMetresPerRadian * turnRows * turnToGoal(startTurn);
+  if (maxSpeed > 0.0 && toGo.norm() > kMaxStride) toGo *= kMaxStride / toGo.norm();
+  const Eigen::Matrix<double, 6, 6> damped =
+      jacobian * jacobian.transpose() +
+      kDamping * kDamping * Eigen::Matrix<double, 6, 6>::Identity();
   const Eigen::VectorXd perStep = jacobian.transpose() * damped.ldlt().solve(toGo);
-  // The fewest steps whose control stays within the limits; the longest one, scaled down,
-  // when none does.
+  // The fewest steps whose control stays within the limits (and the link below maxSpeed);
+  // the longest one, scaled down, when none does.
   const unsigned minSteps = si->getMinControlDuration();
   const unsigned maxSteps = si->getMaxControlDuration();
   const double largest = perStep.cwiseAbs().maxCoeff();
   if (!std::isfinite(largest) || largest <= 0.0) return std::nullopt;
-  const unsigned steps = std::clamp(static_cast<unsigned>(std::ceil(largest)), minSteps, maxSteps);
+  const double slowest =
+      maxSpeed > 0.0 ? toGo.head<3>().norm() / (maxSpeed * si->getPropagationStepSize()) : 0.0;
+  const unsigned steps =
+      std::clamp(static_cast<unsigned>(std::ceil(std::max(largest, slowest))), minSteps, maxSteps);
   const Eigen::VectorXd control = perStep / std::max(static_cast<double>(steps), largest);
   NominalMotion motion;
   motion.control.assign(control.data(), control.data() + control.size());
   motion.steps = steps;
   return motion;
+}
+
+Eigen::Matrix3d GoalSteering::turnProjection(const Eigen::Matrix3d& turn) const {
+  const physics::GoalSpec& spec = context_.goal().spec();
+  if (!spec.approach) return Eigen::Matrix3d::Zero();
+  if (spec.levelAxis) return Eigen::Matrix3d::Identity();
+  // Only the approach is asked for: a turn about the link's own +z changes nothing.
+  const Eigen::Vector3d axis = turn.col(2);
+  return Eigen::Matrix3d::Identity() - axis * axis.transpose();
+}
+
+Eigen::Vector3d GoalSteering::turnToGoal(const Eigen::Matrix3d& turn) const {
+  const physics::GoalSpec& spec = context_.goal().spec();
+  if (!spec.approach) return Eigen::Vector3d::Zero();
+  if (!spec.levelAxis) {
+    const Eigen::Vector3d axis = turn.col(2);
+    const Eigen::Vector3d approach = spec.approach->normalized();
+    const Eigen::Vector3d normal = axis.cross(approach);
+    const double angle = std::atan2(normal.norm(), axis.dot(approach));
+    return normal.norm() > 1e-12 ? Eigen::Vector3d(angle * normal.normalized())
+                                 : Eigen::Vector3d::Zero();
+  }
+  // A two-finger gripper is symmetric about its approach: of the two turns that put the
+  // level axis level, aim at the nearer.
+  const Eigen::Matrix3d goal = context_.goal().nominalGoalPose().linear();
+  const Eigen::Matrix3d flipped =
+      Eigen::AngleAxisd(M_PI, spec.approach->normalized()).toRotationMatrix() * goal;
+  const Eigen::Vector3d toGoal = rotationVector(goal * turn.transpose());
+  const Eigen::Vector3d toFlipped = rotationVector(flipped * turn.transpose());
+  return toGoal.norm() <= toFlipped.norm() ? toGoal : toFlipped;
 }
 
 }  // namespace kautham::planners

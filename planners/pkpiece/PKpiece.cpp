@@ -77,7 +77,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()),
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
-      steering_(context, evaluator_) {
+      steering_(context, evaluator_, settings.clearingPush) {
   specs_.approximateSolutions = true;
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
@@ -435,7 +435,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->belief = chosen.verdict.belief();
   // Every piece of one candidate shares its belief: multiply it in once.
   motion->pathBelief = fromPathBelief * motion->belief;
-  motion->goalDistance = context_.goal().searchDistance(values);
+  motion->goalDistance = steering_.rankDistance(values);
   motion->poses = std::move(poses);
   motion->robotSpread = std::move(robotSpread);
   motion->expansion = iteration_;
@@ -479,7 +479,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     root->state = si_->allocState();
     si_->copyState(root->state, pdef_->getStartState(0));
     const double* start = physics::WorldStateSpace::values(root->state);
-    root->goalDistance = context_.goal().searchDistance(start);
+    root->goalDistance = steering_.rankDistance(start);
     root->poses = settings_.uncertainty
                       ? ObjectPoseBelief::initial(context_.layout(), evaluator_.sampler(), start)
                       : std::make_shared<const ObjectPoseBelief>();

@@ -100,7 +100,7 @@ TEST(RobotSpreadTest, ParticlesStartWithTheRobotOfTheirSampleAndTheirOwnObjectPo
 TEST(GoalSteeringTest, TheSteeredMotionBringsTheGripperMuchCloserToTheGoal) {
   Scene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator);
+  const GoalSteering steering(scene.context, evaluator, true);
   const std::vector<double>& start = scene.context.startState();
   const std::optional<NominalMotion> motion = steering.towardsGoal(start.data());
   ASSERT_TRUE(motion.has_value());
@@ -120,13 +120,13 @@ TEST(GoalSteeringTest, TheSteeredMotionBringsTheGripperMuchCloserToTheGoal) {
   EXPECT_LT(after, 0.5 * before) << before << " -> " << after;
 }
 
-TEST(GoalSteeringTest, NoSteeringWhileAnObjectFillsTheFreeSpace) {
+TEST(GoalSteeringTest, WithoutTheClearingPushNoSteeringWhileAnObjectFillsTheFreeSpace) {
   // kuka_clutter_10 stands can1 on the pre-grasp: steering straight at the goal would push
   // it on to the target.
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
   physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
   MotionEvaluator evaluator(context, 0.3);
-  const GoalSteering steering(context, evaluator);
+  const GoalSteering steering(context, evaluator, false);
   std::vector<double> start = context.startState();
   EXPECT_FALSE(steering.towardsGoal(start.data()).has_value());
 

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "kautham/physics/PlanningContext.h"
+#include "kautham/planners/pkpiece/ClearingPush.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
 
 namespace kautham::planners {
@@ -16,19 +17,39 @@ namespace kautham::planners {
 /// control (a numerical Jacobian); damped least squares turns the displacement still to go,
 /// spread over the fewest steps the control limits allow, into a control.
 ///
-/// None while an object fills the goal's free space (WorkspaceGoal::freeSpaceBlocker): the
-/// straight move would push that object on to the target.
+/// While an object fills the goal's free space (WorkspaceGoal::freeSpaceBlocker) the straight
+/// move would push that object on to the target: it steers the ClearingPush instead (or,
+/// with `clearing` off, not at all).
 class GoalSteering {
  public:
-  GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator);
+  /// Blocked states rank behind every clear one by at least this much (m).
+  static constexpr double kBlockedRank = 0.5;
+
+  GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing);
 
   /// The steering motion from `start`; none when a probe step is invalid, the goal is a
-  /// configuration, or the goal's free space is blocked.
+  /// configuration, or the goal's free space is blocked and there is no clearing push.
   std::optional<NominalMotion> towardsGoal(const double* start) const;
+  /// How far `state` is from the goal, for choosing what the goal bias grows: the search
+  /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
+  /// what remains of the clearing push.
+  double rankDistance(const double* state) const;
 
  private:
+  /// A control that drives the goal link straight at `target`; with `maxSpeed` > 0 (m/s)
+  /// no faster than that and at most a stride far.
+  std::optional<NominalMotion> steer(const double* start, const Eigen::Vector3d& target,
+                                     double maxSpeed) const;
+  /// What of a turn (world rotation vector) the goal cares about: all of it with a level
+  /// axis, none without an approach, the part that tilts the approach axis otherwise.
+  Eigen::Matrix3d turnProjection(const Eigen::Matrix3d& turn) const;
+  /// The rotation vector (world frame) from the goal link's orientation `turn` to the goal's.
+  Eigen::Vector3d turnToGoal(const Eigen::Matrix3d& turn) const;
+
   const physics::PlanningContext& context_;
   MotionEvaluator& evaluator_;
+  ClearingPush clearing_;
+  bool clearingOn_;
 };
 
 }  // namespace kautham::planners

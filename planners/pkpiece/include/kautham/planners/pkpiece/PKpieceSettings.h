@@ -32,6 +32,9 @@ struct PKpieceSettings {
   bool pruneCandidates;
   /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
   bool goalSteering;
+  /// While an object fills the goal's free space, the goal bias grows the motions furthest
+  /// along a push that clears it, and steers that push (ClearingPush).
+  bool clearingPush;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -115,6 +118,11 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(1)
                    .describe("in a goal-biased expansion, aim one candidate at the goal (a "
                              "numerical Jacobian from probe steps)"))
+          .add(&S::clearingPush,
+               Parameter::flag("clearing_push")
+                   .byDefault(1)
+                   .describe("while an object fills the goal's free space, the goal bias grows "
+                             "and steers a low push that moves it out sideways"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")

@@ -1,0 +1,99 @@
+#include "kautham/planners/pkpiece/ClearingPush.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kautham::planners {
+
+namespace {
+// Beyond the free space's half width, how far beside the object's centre the push starts:
+// the object's radius, a finger's thickness and a margin, so the gripper lands clear of it.
+constexpr double kStandOff = 0.05;  // m
+// How far ahead of the object's centre the push aims: the waypoint stays ahead of the
+// object while it moves, so the push goes on until the free space is clear.
+constexpr double kPushThrough = 0.03;  // m
+// The gripper counts as at the stand-off, or on the line of the push, within this.
+constexpr double kOnLine = 0.03;  // m
+// How far below the object's centre the push acts: 4.6 cm up a 12.2 cm can. Lower, the
+// palm grazes the table under control noise.
+constexpr double kBelowCentre = 0.015;  // m
+// The stand-off is reached from this high above the push: lowered onto it, the gripper
+// does not sweep through the objects beside it.
+constexpr double kAbove = 0.10;  // m
+// The goal link is at the fingertips; the fingers' middle, which should meet the object,
+// lies this far back along the approach.
+constexpr double kFingerMiddle = 0.025;  // m
+// How far the gripper reaches back from the goal link (fingers, palm, wrist): the room a
+// stand-off needs lies along this footprint.
+constexpr double kFootprint = 0.12;  // m
+// Margin above the workspace floor (the goal link may not leave the workspace).
+constexpr double kFloorMargin = 0.012;  // m
+
+/// Horizontal distance from `p` to the segment from `a` to `b`.
+double toSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector2d ab = (b - a).head<2>();
+  const Eigen::Vector2d ap = (p - a).head<2>();
+  const double t =
+      ab.squaredNorm() > 0.0 ? std::clamp(ap.dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (ap - t * ab).norm();
+}
+}  // namespace
+
+ClearingPush::ClearingPush(const physics::PlanningContext& context) : context_(context) {
+  const physics::GoalSpec& spec = context.goal().spec();
+  if (!spec.freeSpace || !spec.approach || !spec.levelAxis) return;
+  back_ = -*spec.approach;
+  back_.z() = 0.0;
+  across_ = spec.approach->cross(Eigen::Vector3d::UnitZ());
+  if (back_.norm() < 1e-9 || across_.norm() < 1e-9) return;  // a vertical approach
+  back_.normalize();
+  across_.normalize();
+  halfWidth_ = 0.5 * spec.freeSpace->size.dot(spec.levelAxis->normalized().cwiseAbs());
+  lowest_ = context.problem().workspace.min().z() + kFloorMargin;
+}
+
+std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const {
+  if (halfWidth_ <= 0.0) return std::nullopt;
+  const physics::WorkspaceGoal& goal = context_.goal();
+  const std::optional<std::size_t> blocker = goal.freeSpaceBlocker(state);
+  if (!blocker) return std::nullopt;
+  Eigen::Vector3d object = physics::WorldLayout::position(state, *blocker);
+  object.z() = std::max(object.z() - kBelowCentre, lowest_);
+  object -= kFingerMiddle * back_;
+  // Push away from the side with more room: the stand-off lies on the other side.
+  const double standOff = halfWidth_ + kStandOff;
+  const Eigen::Vector3d plus = object + standOff * across_;
+  const Eigen::Vector3d minus = object - standOff * across_;
+  const bool fromPlus = room(state, plus, *blocker) >= room(state, minus, *blocker);
+  const Eigen::Vector3d direction = fromPlus ? Eigen::Vector3d(-across_) : across_;
+  const Eigen::Vector3d start = fromPlus ? plus : minus;
+  const Eigen::Vector3d end = object + kPushThrough * direction;
+  const double endToGoal = (goal.position() - end).norm();
+
+  const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
+  const Eigen::Vector3d fromObject = link - object;
+  const double along = fromObject.dot(direction);
+  const double offLine = (fromObject - along * direction).norm();
+  if (along <= 0.0 && offLine <= kOnLine) return Step{end, (end - link).norm() + endToGoal, true};
+  const Eigen::Vector3d fromStart = link - start;
+  const double pushLength = (end - start).norm();
+  if (std::hypot(fromStart.x(), fromStart.y()) <= kOnLine)
+    return Step{start, fromStart.norm() + pushLength + endToGoal, false};
+  const Eigen::Vector3d above = start + kAbove * Eigen::Vector3d::UnitZ();
+  return Step{above, (above - link).norm() + kAbove + pushLength + endToGoal, false};
+}
+
+double ClearingPush::room(const double* state, const Eigen::Vector3d& point,
+                          std::size_t blocker) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d wrist = point + kFootprint * back_;
+  const auto& bodies = context_.layout().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;
+    nearest = std::min(nearest, toSegment(physics::WorldLayout::position(state, b), point, wrist));
+  }
+  return nearest;
+}
+
+}  // namespace kautham::planners

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <optional>
+
+#include <Eigen/Core>
+
+#include "kautham/physics/PlanningContext.h"
+
+namespace kautham::planners {
+
+/// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
+/// paper): a push that moves the object sideways out of the approach, low on the object.
+///
+/// The gripper first goes above a stand-off point beside the object (on the side with more
+/// room), down to the push height, then sweeps across the approach through the object's
+/// centre. The push is low (1.5 cm below the object's centre, 4.6 cm up a 12.2 cm can)
+/// because a can pushed at a side pre-grasp's height, near its top, tips over before it
+/// slides: it slides only when pushed below radius / friction (6.6 cm for a can with
+/// friction 0.5).
+///
+/// The waypoints follow the object as it moves, so a push in progress goes on until the
+/// object leaves the free space. `remaining` is the length of the rest of this plan and on
+/// to the goal: the goal bias ranks blocked states by it, so the motions furthest along the
+/// clearing are the ones grown.
+class ClearingPush {
+ public:
+  struct Step {
+    Eigen::Vector3d waypoint;  ///< where the goal link heads next
+    double remaining = 0.0;    ///< m of the clearing plan still to go, and on to the goal
+    bool pushing = false;      ///< the goal link is behind the object, on the line of the push
+  };
+
+  explicit ClearingPush(const physics::PlanningContext& context);
+
+  /// None when the free space is clear, or the goal has no free space or side approach.
+  std::optional<Step> next(const double* state) const;
+
+ private:
+  /// How near the stand-off at `point` (and the wrist behind it) the other objects stand.
+  double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker) const;
+
+  const physics::PlanningContext& context_;
+  Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
+  Eigen::Vector3d across_ = Eigen::Vector3d::Zero();  ///< level, across the approach
+  double halfWidth_ = 0.0;                            ///< of the free space, across the approach
+  double lowest_ = 0.0;  ///< the lowest the goal link may go (workspace floor and margin)
+};
+
+}  // namespace kautham::planners

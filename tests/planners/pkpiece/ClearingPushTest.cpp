@@ -1,0 +1,112 @@
+// The clearing push p-KPIECE steers while an object fills the goal's free space, on the real
+// kuka_clutter_10 scene (can1 stands on its side pre-grasp) with the real physics.
+
+#include <algorithm>
+
+#include <gtest/gtest.h>
+
+#include "TestPaths.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/planners/pkpiece/ClearingPush.h"
+#include "kautham/planners/pkpiece/GoalSteering.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+
+namespace kautham::planners {
+namespace {
+
+struct ClutterScene {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
+  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
+
+  std::size_t body(const std::string& name) const {
+    const auto& bodies = context.layout().bodies;
+    const auto found = std::find_if(bodies.begin(), bodies.end(),
+                                    [&](const physics::BodyInfo& b) { return b.name == name; });
+    EXPECT_NE(found, bodies.end()) << name;
+    return static_cast<std::size_t>(found - bodies.begin());
+  }
+  Eigen::Vector3d position(const std::vector<double>& state, const std::string& name) const {
+    return physics::WorldLayout::position(state.data(), body(name));
+  }
+};
+
+TEST(ClearingPushTest, StartsAboveAStandOffBesideTheBlockerAndLowEnoughNotToTipIt) {
+  ClutterScene scene;
+  const ClearingPush clearing(scene.context);
+  const std::vector<double>& start = scene.context.startState();
+  const std::optional<ClearingPush::Step> step = clearing.next(start.data());
+  ASSERT_TRUE(step.has_value());
+  EXPECT_FALSE(step->pushing);
+  const Eigen::Vector3d can = scene.position(start, "can1");
+  // The approach is +y: the stand-off lies across it (x), beyond the free space's half width
+  // (6 cm) and the can's radius, and above the cans' tops (0.872 m).
+  EXPECT_GT(std::abs(step->waypoint.x() - can.x()), 0.09);
+  EXPECT_GT(step->waypoint.z(), 0.872);
+  // What remains: down to the push, across the free space and up to the goal.
+  EXPECT_GT(step->remaining, 0.3);
+}
+
+TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
+  ClutterScene scene;
+  const ClearingPush clearing(scene.context);
+  const std::vector<double>& start = scene.context.startState();
+  const ClearingPush::Step first = *clearing.next(start.data());
+  const Eigen::Vector3d can = scene.position(start, "can1");
+  // Carry the whole robot (every body, unturned) so that its fingertips stand where the push
+  // starts: the stand-off, lowered.
+  std::vector<double> state = start;
+  const physics::WorldLayout& layout = scene.context.layout();
+  const Eigen::Vector3d standOff(first.waypoint.x(), first.waypoint.y(), can.z() - 0.015);
+  const Eigen::Vector3d shift = standOff - layout.goalLinkPosition(state.data());
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+    if (layout.bodies[b].role == physics::BodyRole::Robot)
+      for (int k = 0; k < 3; ++k) state[b * physics::WorldLayout::kBodyStateSize + k] += shift[k];
+  const std::optional<ClearingPush::Step> push = clearing.next(state.data());
+  ASSERT_TRUE(push.has_value());
+  EXPECT_TRUE(push->pushing);
+  // Across, to the far side of the can's centre, 4.6 cm up the 12.2 cm can (its centre is
+  // 6.1 cm up): pushed above 6.6 cm (radius / friction), a can tips before it slides.
+  EXPECT_LT((push->waypoint.x() - can.x()) * (standOff.x() - can.x()), 0.0);
+  EXPECT_NEAR(push->waypoint.z(), can.z() - 0.015, 1e-9);
+  EXPECT_LT(push->remaining, first.remaining);
+}
+
+TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
+  ClutterScene scene;
+  MotionEvaluator evaluator(scene.context, 0.3);
+  const GoalSteering steering(scene.context, evaluator, true);
+  const std::vector<double>& start = scene.context.startState();
+  const double blocked = steering.rankDistance(start.data());
+  EXPECT_GT(blocked, GoalSteering::kBlockedRank + 0.3);
+  std::vector<double> cleared = start;
+  cleared[scene.body("can1") * physics::WorldLayout::kBodyStateSize] += 0.2;
+  const double clear = steering.rankDistance(cleared.data());
+  EXPECT_NEAR(clear, scene.context.goal().searchDistance(cleared.data()), 1e-12);
+  EXPECT_LT(clear, blocked);
+  // Without the clearing push the rank is the search distance, blocked or not.
+  const GoalSteering plain(scene.context, evaluator, false);
+  EXPECT_NEAR(plain.rankDistance(start.data()), scene.context.goal().searchDistance(start.data()),
+              1e-12);
+}
+
+TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
+  ClutterScene scene;
+  MotionEvaluator evaluator(scene.context, 0.3);
+  const GoalSteering steering(scene.context, evaluator, true);
+  const ClearingPush clearing(scene.context);
+  const std::vector<double>& start = scene.context.startState();
+  const Eigen::Vector3d waypoint = clearing.next(start.data())->waypoint;
+  const std::optional<NominalMotion> motion = steering.towardsGoal(start.data());
+  ASSERT_TRUE(motion.has_value());
+  const NominalRun run =
+      evaluator.runNominal(start.data(), motion->control.data(), motion->steps, false);
+  ASSERT_GT(run.steps, 0u);
+  const physics::WorldLayout& layout = scene.context.layout();
+  const double before = (layout.goalLinkPosition(start.data()) - waypoint).norm();
+  const double after = (layout.goalLinkPosition(run.end.data()) - waypoint).norm();
+  // One stride (at most 10 cm) closer, nearly all of it.
+  EXPECT_LT(after, before - 0.07) << before << " -> " << after;
+}
+
+}  // namespace
+}  // namespace kautham::planners
