@@ -39,7 +39,6 @@ void World::readState(double* state) const {
 }
 
 void World::writeState(const double* state) {
-  restoreGeomOrder();
   for (std::size_t i = 0; i < bodies_.size(); ++i) {
     const double* s = state + i * WorldLayout::kBodyStateSize;
     dBodySetPosition(bodies_[i], s[0], s[1], s[2]);
@@ -50,6 +49,10 @@ void World::writeState(const double* state) {
     dBodySetLinearVel(bodies_[i], s[7], s[8], s[9]);
     dBodySetAngularVel(bodies_[i], s[10], s[11], s[12]);
   }
+  // After the bodies are set: setting a body moves its geometries to the front of the list
+  // only if they were clean, and whether they were depends on what ran before (a collision
+  // test cleans them, a step dirties them). Now every one is dirty, so its order is ours.
+  restoreGeomOrder();
   for (dBodyID body : sleepers_) {
     dBodyEnable(body);  // restarts its idle count
     const dReal* v = dBodyGetLinearVel(body);

@@ -96,8 +96,9 @@ std::vector<ParticleJob> MotionEvaluator::particleJobs(const ParticleRequest& re
     ParticleJob& job = jobs[p];
     std::mt19937_64 rng(request.streamSeed + p);
     job.start.assign(request.start, request.start + stateSize_);
-    if (request.robots) request.robots->apply(p, job.start.data());
+    // The sampled poses first: an object the spread carries takes its particle's state.
     request.poses->samplePoses(job.start.data(), rng);
+    if (request.robots) request.robots->apply(p, job.start.data());
     job.contact = sampler_.sampleContact(rng);
     job.control.resize(controlSize_);
     sampler_.perturbControl(request.control, job.control.data(), controlSize_, rng);

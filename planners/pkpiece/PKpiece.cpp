@@ -278,6 +278,22 @@ void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
   if (candidate.run.reachedGoal && !candidate.verdict.pruned) settleInGoal(candidate);
 }
 
+void PKpiece::confirm(Candidate& candidate, const Motion& from) {
+  if (!candidate.judged) judge(candidate, from, -1.0);  // its belief is needed either way
+  candidate.streamSeed = nextStreamSeed();
+  candidate.recordAfter = candidate.pieceEnds;
+  ParticleRequest request;
+  request.start = physics::WorldStateSpace::values(from.state);
+  request.control = candidate.control.data();
+  request.steps = candidate.run.steps;
+  request.poses = from.poses.get();
+  request.robots = from.robotSpread.get();
+  request.recordAfter = candidate.recordAfter;
+  request.particles = settings_.particles;
+  request.streamSeed = candidate.streamSeed;
+  candidate.verdict = evaluator_.runParticles(request, -1.0);
+}
+
 bool PKpiece::withParticles() const { return settings_.uncertainty && settings_.particles > 0; }
 
 std::size_t PKpiece::recordIndex(const Candidate& candidate, unsigned step) {
@@ -359,26 +375,43 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
 
 PKpiece::Motion* PKpiece::expand(Motion* from) {
   std::vector<Candidate> valid = sampleCandidates(*from);
-  const Candidate* chosen = chooseCandidate(valid, *from);
+  Candidate* chosen = chooseCandidate(valid, *from);
   if (!chosen) return nullptr;
+  if (settings_.confirmBelief && withParticles()) confirm(*chosen, *from);
   const double* start = physics::WorldStateSpace::values(from->state);
   const auto endPoses = from->poses->afterMotion(
       evaluator_.objectBodies(), start, chosen->run.end.data(), chosen->verdict.ends, fitRng_);
   // Pieces before the end carry the parent's pose distribution while no object has moved yet,
-  // and the end's once one has (the particles tell only how the motion ends).
+  // and once one has, the one fitted to where the particles had the objects at the piece's
+  // end (the end's would put a can the gripper is still pushing where the push leaves it).
   const std::vector<std::vector<double>>& states = chosen->run.states;
   Motion* parent = from;
   unsigned pieceStart = 0;
   for (std::size_t k = 0; k < chosen->pieceEnds.size(); ++k) {
     const unsigned end = chosen->pieceEnds[k];
     const bool last = end == states.size();
-    const bool untouched = !last && !objectsMoved(start, states[end - 1].data());
+    std::shared_ptr<const ObjectPoseBelief> poses = endPoses;
+    if (!last)
+      poses = objectsMoved(start, states[end - 1].data()) ? posesAfter(*chosen, end, *from)
+                                                          : from->poses;
     parent = addPiece(parent, *chosen, states[end - 1], end - pieceStart, from->pathBelief,
-                      untouched ? from->poses : endPoses,
-                      robotSpreadAt(*chosen, end, from->robotSpread));
+                      std::move(poses), robotSpreadAt(*chosen, end, *from));
     pieceStart = end;
   }
   return parent;
+}
+
+std::shared_ptr<const ObjectPoseBelief> PKpiece::posesAfter(const Candidate& chosen, unsigned step,
+                                                            const Motion& from) {
+  std::vector<std::vector<double>> particles;
+  if (withParticles()) {
+    const std::size_t record = recordIndex(chosen, step);
+    for (const auto& recorded : chosen.verdict.recorded)
+      if (recorded.size() > record) particles.push_back(recorded[record]);
+  }
+  return from.poses->afterMotion(evaluator_.objectBodies(),
+                                 physics::WorldStateSpace::values(from.state),
+                                 chosen.run.states[step - 1].data(), particles, fitRng_);
 }
 
 std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {
@@ -391,8 +424,8 @@ std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {
   return ends;
 }
 
-std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(
-    const Candidate& chosen, unsigned step, std::shared_ptr<const RobotSpread> parents) const {
+std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(const Candidate& chosen, unsigned step,
+                                                          const Motion& from) const {
   if (!settings_.robotSpread || !withParticles()) return nullptr;
   const std::size_t record = recordIndex(chosen, step);
   std::vector<const std::vector<double>*> states;
@@ -400,8 +433,33 @@ std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(
     if (particle.size() > record) states.push_back(&particle[record]);
   // No particle got this far (the belief says so): the parent's spread is the best guess;
   // the nominal robot alone would make what grows from here look certain.
-  if (states.empty()) return parents;
-  return RobotSpread::fromStates(robotPart_, states);
+  if (states.empty()) return from.robotSpread;
+  std::vector<std::size_t> carried;
+  if (settings_.objectSpread) {
+    if (from.robotSpread) carried = from.robotSpread->objects();
+    const double* start = physics::WorldStateSpace::values(from.state);
+    for (std::size_t b : evaluator_.objectBodies())
+      if (disturbed(b, start, chosen.run.states[step - 1].data(), states)) carried.push_back(b);
+  }
+  return RobotSpread::fromStates(robotPart_, states, std::move(carried));
+}
+
+bool PKpiece::disturbed(std::size_t body, const double* start, const double* nominal,
+                        const std::vector<const std::vector<double>*>& particles) {
+  constexpr double kMoved = 0.001;  // m the nominal run moved it
+  constexpr double kMoving = 0.01;  // m/s a particle has it still sliding
+  constexpr double kTurning = 0.1;  // rad/s a particle has it still turning or tipping
+  if ((physics::WorldLayout::position(nominal, body) - physics::WorldLayout::position(start, body))
+          .norm() > kMoved)
+    return true;
+  const std::size_t at = body * physics::WorldLayout::kBodyStateSize;
+  for (const std::vector<double>* state : particles) {
+    const double* v = state->data() + at + physics::WorldLayout::kLinearVelocity;
+    const double* w = state->data() + at + physics::WorldLayout::kAngularVelocity;
+    if (std::hypot(v[0], v[1], v[2]) > kMoving || std::hypot(w[0], w[1], w[2]) > kTurning)
+      return true;
+  }
+  return false;
 }
 
 PKpiece::Grid::Coord PKpiece::cellOf(const std::vector<double>& state) const {

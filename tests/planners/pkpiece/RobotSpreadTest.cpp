@@ -63,6 +63,29 @@ TEST(RobotSpreadTest, ApplyWritesTheRobotOfASampleCyclingAndLeavesTheObjects) {
   }
 }
 
+TEST(RobotSpreadTest, ItCarriesTheWholeStateOfTheObjectsAPathMovedAndOnlyThose) {
+  Scene scene;
+  const physics::WorldLayout& layout = scene.context.layout();
+  const std::vector<double>& start = scene.context.startState();
+  std::size_t object = layout.bodies.size();
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+    if (layout.bodies[b].role == physics::BodyRole::Movable) object = b;
+  ASSERT_LT(object, layout.bodies.size());
+  std::vector<double> moved = start;
+  for (std::size_t index = 0; index < start.size(); ++index) moved[index] += 1.0;
+  const auto spread = RobotSpread::fromStates(scene.part, {&moved}, {object, object});
+  ASSERT_NE(spread, nullptr);
+  EXPECT_EQ(spread->objects(), std::vector<std::size_t>{object});  // once, however often named
+  std::vector<double> state = start;
+  spread->apply(0, state.data());
+  const std::size_t k = physics::WorldLayout::kBodyStateSize;
+  for (std::size_t index = 0; index < state.size(); ++index) {
+    // Its pose, tilt and velocities: all 13 numbers of the carried object's body.
+    const bool carried = isRobotIndex(layout, index) || index / k == object;
+    EXPECT_DOUBLE_EQ(state[index], start[index] + (carried ? 1.0 : 0.0)) << index;
+  }
+}
+
 TEST(RobotSpreadTest, ParticlesStartWithTheRobotOfTheirSampleAndTheirOwnObjectPoses) {
   Scene scene;
   MotionEvaluator evaluator(scene.context, 0.3);

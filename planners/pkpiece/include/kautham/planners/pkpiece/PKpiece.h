@@ -58,13 +58,22 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
                    unsigned steps, double fromPathBelief,
                    std::shared_ptr<const ObjectPoseBelief> poses,
                    std::shared_ptr<const RobotSpread> robotSpread);
+  /// The objects' pose distribution after `step` steps of the chosen candidate, fitted to
+  /// where its nominal run and its particles (those valid so far) had them then.
+  std::shared_ptr<const ObjectPoseBelief> posesAfter(const Candidate& chosen, unsigned step,
+                                                     const Motion& from);
   /// Steps after which a nominal run is cut into tree motions: where the end effector
   /// changes cell, and at the end.
   std::vector<unsigned> pieceEnds(const NominalRun& run) const;
-  /// The robot states the chosen candidate's particles reached after `step` steps (the
-  /// parent's, `parents`, if none did).
-  std::shared_ptr<const RobotSpread> robotSpreadAt(
-      const Candidate& chosen, unsigned step, std::shared_ptr<const RobotSpread> parents) const;
+  /// The robot states the chosen candidate's particles reached after `step` steps, with the
+  /// objects the path has disturbed (objectSpread); the parent motion's spread if none got
+  /// that far.
+  std::shared_ptr<const RobotSpread> robotSpreadAt(const Candidate& chosen, unsigned step,
+                                                   const Motion& from) const;
+  /// An object body the spread must carry (objectSpread): the nominal run moved it from
+  /// `start`, or a particle still has it moving.
+  static bool disturbed(std::size_t body, const double* start, const double* nominal,
+                        const std::vector<const std::vector<double>*>& particles);
   /// Candidates are judged by particles (uncertainty on), not by their nominal run alone.
   bool withParticles() const;
   /// Where the particles' states after `step` steps are in their recorded states.
@@ -79,6 +88,10 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   std::vector<Candidate> sampleCandidates(const Motion& from);
   /// Runs the candidate's particles (or judges its nominal run), pruned against `toBeat`.
   void judge(Candidate& candidate, const Motion& from, double toBeat);
+  /// Judges the kept candidate again, in full, by particles with fresh random streams, as it
+  /// stands (a goal-reaching one cut where it settled): its belief and goal fraction are
+  /// then not the best of several noisy estimates.
+  void confirm(Candidate& candidate, const Motion& from);
   Candidate* chooseCandidate(std::vector<Candidate>& valid, const Motion& from);
   bool reachesGoal(const Candidate& candidate) const;
   /// The estimated success of the plan that would end with the candidate (goalConfidence).

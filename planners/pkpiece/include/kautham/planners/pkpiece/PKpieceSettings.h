@@ -28,8 +28,16 @@ struct PKpieceSettings {
   /// A candidate's particles start from the robot states its parent's particles reached, so
   /// control noise accumulates along a path (false: from the tree's nominal robot state).
   bool robotSpread;
+  /// With robotSpread, the spread also carries the whole state of the objects the path has
+  /// moved: particle i's can goes on sliding or tipping as it did (false: objects are drawn
+  /// from the pose distribution, upright and at rest as the nominal state has them).
+  bool objectSpread;
   /// Stop judging a candidate once it cannot beat the best one so far (the same choice).
   bool pruneCandidates;
+  /// The kept candidate's belief is measured again by fresh particles: the best of k
+  /// estimates is biased upwards (the winner's curse), and the plan's estimated success is a
+  /// product of such winners.
+  bool confirmBelief;
   /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
   bool goalSteering;
   /// While an object fills the goal's free space, the goal bias grows the motions furthest
@@ -108,11 +116,22 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("particles start from the robot states their parent's particles "
                              "reached, so control noise accumulates along a path (0: from the "
                              "tree's robot state)"))
+          .add(&S::objectSpread,
+               Parameter::flag("object_spread")
+                   .byDefault(1)
+                   .describe("with robot_spread, particles also take the objects the path moved "
+                             "(pose, tilt, velocities) from their parent's particles (0: drawn "
+                             "from the pose distribution)"))
           .add(&S::pruneCandidates,
                Parameter::flag("prune_candidates")
                    .byDefault(1)
                    .describe("stop judging a candidate once it cannot beat the best so far (the "
                              "same choice, less work)"))
+          .add(&S::confirmBelief,
+               Parameter::flag("confirm_belief")
+                   .byDefault(1)
+                   .describe("measure the kept candidate's belief again with fresh particles "
+                             "(the best of k estimates is biased upwards)"))
           .add(&S::goalSteering,
                Parameter::flag("goal_steering")
                    .byDefault(1)
