@@ -10,6 +10,8 @@
 #include <sstream>
 #include <utility>
 
+#include "FinalLinkGoal.h"
+#include "LinkInertia.h"
 #include "MobileBase.h"
 #include "XmlReader.h"
 #include "kautham/core/Log.h"
@@ -220,6 +222,7 @@ class ProblemReader {
     if (const XMLElement* u = e.FirstChildElement("Uncertainty"))
       xml_.fail(*u, "<Uncertainty> is for objects' poses; a <Robot> has none");
     readModel(e, "robot", problem_.robot);
+    repairLinkInertias(problem_.robot);
     problem_.robot.baseAxes = readBaseLimits(e);
   }
 
@@ -337,41 +340,11 @@ class ProblemReader {
     xml_.fail(e, "unknown role '" + role + "'; expected fixed, movable or target");
   }
 
-  /// A URDF inertia far below what the link's mass and size imply (Kautham's walls: 2 kg, 9 m
-  /// long, the inertia of a 5 cm cube) makes ODE spin or jitter the body. Such an inertia is
-  /// replaced by that of the solid box around the link's collision shapes, with a warning.
-  static void repairTinyInertia(ObjectInstance& object) {
-    for (Link& link : object.model.links) {
-      const double mass = link.inertial.mass;
-      if (!(mass > 0.0) || link.collisions.empty()) continue;
-      Eigen::AlignedBox3d box;
-      for (const CollisionShape& c : link.collisions) box.extend(boundingBox(c.shape, c.origin));
-      const Eigen::Vector3d size = box.sizes();
-      const Eigen::Vector3d solid(mass / 12.0 * (size.y() * size.y() + size.z() * size.z()),
-                                  mass / 12.0 * (size.x() * size.x() + size.z() * size.z()),
-                                  mass / 12.0 * (size.x() * size.x() + size.y() * size.y()));
-      const Eigen::Vector3d given = link.inertial.inertia.diagonal();
-      bool tiny = false;
-      for (int i = 0; i < 3; ++i) tiny |= given[i] < 0.01 * solid[i];
-      if (!tiny) continue;
-      warnOnce(object.urdf.string() + "\n" + link.name,
-               object.urdf.string() + ": link '" + link.name + "': its inertia (" +
-                   std::to_string(given.x()) + ", " + std::to_string(given.y()) + ", " +
-                   std::to_string(given.z()) + ") is far below that of a " + std::to_string(mass) +
-                   " kg body of its size, which ODE cannot simulate "
-                   "steadily; using the solid box's (" +
-                   std::to_string(solid.x()) + ", " + std::to_string(solid.y()) + ", " +
-                   std::to_string(solid.z()) + ")");
-      link.inertial.inertia = solid.asDiagonal();
-      link.inertial.origin.linear().setIdentity();
-    }
-  }
-
   void readObstacle(const XMLElement& e) {
     xml_.allowAttributes(e, {"obstacle", "scale", "name", "role"});
     ObjectInstance object;
     readModel(e, "obstacle", object);
-    repairTinyInertia(object);
+    repairLinkInertias(object);
     object.role = readRole(e, object.model);
     if (const XMLElement* u = e.FirstChildElement("Uncertainty")) {
       xml_.allowAttributes(*u, {"x", "y", "yaw"});
@@ -541,7 +514,32 @@ class ProblemReader {
     for (const XMLElement* q = queries->FirstChildElement(); q; q = q->NextSiblingElement())
       readQuery(*q);
     if (problem_.queries.empty()) xml_.fail(*queries, "<Queries> has no <Query>");
+    applyFinalLinkGoal();
     applyControlDimensions();
+  }
+
+  /// Kautham's `only final link position?` 1 (its planar chain): the goal is the position of the
+  /// chain's end link, not the joint values (FinalLinkGoal.h). Read before `Control Dimensions`,
+  /// so a control that only the goal configuration moves may be held.
+  void applyFinalLinkGoal() {
+    const auto given = std::find_if(
+        problem_.planner.parameters.begin(), problem_.planner.parameters.end(),
+        [](const PlannerParameter& p) { return p.name == "only final link position?"; });
+    if (given == problem_.planner.parameters.end() || std::atof(given->value.c_str()) == 0.0)
+      return;
+    for (Query& query : problem_.queries) {
+      if (!query.goal.isConfiguration()) continue;
+      query.goal = finalLinkGoal(problem_, query.goal);
+      const Eigen::Vector3d& at = query.goal.offset;
+      std::ostringstream message;
+      message.precision(3);
+      message << std::fixed << given->where.str() << ": Kautham's 'only final link position?' "
+              << given->value << ": query '" << query.name << "' ends when '" << query.goal.link
+              << "' is within " << query.goal.tolerance << " m of (" << at.x() << ", " << at.y()
+              << ", " << at.z()
+              << "), where the goal configuration puts it; the joint values are not compared";
+      warning(message.str());
+    }
   }
 
   /// Kautham's 2D physics planners (KnowledgeOrientedKPIECE2DPlanner, ...) push the robot with

@@ -8,7 +8,6 @@
 #include <ompl/geometric/planners/informedtrees/BITstar.h>
 #include <ompl/geometric/planners/kpiece/KPIECE1.h>
 #include <ompl/geometric/planners/prm/PRM.h>
-#include <ompl/geometric/planners/rrt/LazyRRT.h>
 #include <ompl/geometric/planners/rrt/RRT.h>
 #include <ompl/geometric/planners/rrt/RRTConnect.h>
 #include <ompl/geometric/planners/rrt/RRTstar.h>
@@ -16,6 +15,7 @@
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/geometric/ComponentPRM.h"
 #include "kautham/planners/geometric/GeometricPlanner.h"
+#include "kautham/planners/geometric/LinearLazyRRT.h"
 
 namespace kautham::planners {
 
@@ -105,7 +105,7 @@ void registerOmplGeometricPlanners(PlannerRegistry& registry) {
            .range(1, 1000)
            .describe("neighbours each new roadmap vertex tries to connect to")
            .alias("MaxNearestNeighbors")}));
-  registry.add(geometricEntry<ompl::geometric::LazyRRT>(
+  registry.add(geometricEntry<geometric::LinearLazyRRT>(
       "LazyRRT", "geometric: OMPL's lazy RRT, collision checks postponed to candidate paths",
       {range(), goalBiasParameter(0.05)}));
   registry.add(geometricEntry<ompl::geometric::KPIECE1>(

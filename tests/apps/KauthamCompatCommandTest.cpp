@@ -118,11 +118,11 @@ const char* kFoldedArm = R"(<?xml version="1.0"?>
 <robot name="folded_arm">
   <link name="base"><collision><geometry><box size="0.3 0.3 0.1"/></geometry></collision></link>
   <link name="upper">
-    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <inertial><mass value="1"/><inertia ixx="0.001" iyy="0.001" izz="0.0004" ixy="0" ixz="0" iyz="0"/></inertial>
     <collision><origin xyz="0 0 0.05"/><geometry><box size="0.05 0.05 0.1"/></geometry></collision>
   </link>
   <link name="lower">
-    <inertial><mass value="1"/><inertia ixx="0.01" iyy="0.01" izz="0.01" ixy="0" ixz="0" iyz="0"/></inertial>
+    <inertial><mass value="1"/><inertia ixx="0.008" iyy="0.008" izz="0.0003" ixy="0" ixz="0" iyz="0"/></inertial>
     <collision><origin xyz="0 0 -0.12"/><geometry><box size="0.04 0.04 0.3"/></geometry></collision>
   </link>
   <joint name="turn" type="revolute">

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -329,6 +330,43 @@ TEST(KauthamControlDimensions, AControlTheQueriesMoveIsPlannedWithAWarning) {
   EXPECT_EQ(warnings.count("Kautham's 'Control Dimensions' 2 would hold control 'mover/x3' still, "
                            "but the queries move it: all 3 controls are planned"),
             1);
+}
+
+TEST(KauthamFinalLinkGoal, TheGoalIsWhereTheGoalConfigurationPutsTheChainsEnd) {
+  Warnings warnings;
+  const Problem problem = loadProblem(compatFile("planar_chain.xml"));
+  const GoalRegion& goal = problem.queries.at(0).goal;
+  ASSERT_FALSE(goal.isConfiguration());
+  EXPECT_EQ(goal.link, "hand");  // where the fingers branch, not the last finger in the file
+  EXPECT_TRUE(goal.relativeTo.empty());
+  EXPECT_DOUBLE_EQ(goal.tolerance, 0.05);
+  // The shoulder at 0.75 of [-1.5, 1.5] (0.75 rad), the elbow straight: the hand 0.2 m out.
+  EXPECT_TRUE(
+      goal.offset.isApprox(Eigen::Vector3d(0.2 * std::cos(0.75), 0.2 * std::sin(0.75), 0.33), 1e-9))
+      << goal.offset.transpose();
+  EXPECT_EQ(warnings.count("planar_chain.xml:14: Kautham's 'only final link position?' 1: query "
+                           "'query0' ends when 'hand' is within 0.050 m of (0.146, 0.136, 0.330)"),
+            1);
+  // Only the goal configuration moved the finger: 'Control Dimensions' 2 now holds it.
+  EXPECT_EQ(problem.robot.controls.names, (std::vector<std::string>{"arm", "hand"}));
+}
+
+TEST(KauthamLinkInertia, AnInertiaNoMassInsideTheLinkCanHaveIsThatOfItsSolidBox) {
+  Warnings warnings;
+  const Problem problem = loadProblem(compatFile("planar_chain.xml"));
+  const KinematicModel& model = problem.robot.model;
+  const Link& arm = model.links.at(static_cast<std::size_t>(*model.findLink("arm")));
+  // 0.1 kg in a 0.2 x 0.02 x 0.02 m box: at most 0.1 (0.2^2 + 0.02^2) = 0.00404 kg m^2.
+  EXPECT_TRUE(arm.inertial.inertia.diagonal().isApprox(
+      Eigen::Vector3d(0.1 / 12 * 0.0008, 0.1 / 12 * 0.0404, 0.1 / 12 * 0.0404), 1e-9))
+      << arm.inertial.inertia.diagonal().transpose();
+  EXPECT_EQ(warnings.count("link 'arm': its inertia (1, 1, 1) is more than a 0.1 kg body of its "
+                           "size can have"),
+            1);
+  // Plausible inertias stay as written, and are not mentioned.
+  const Link& hand = model.links.at(static_cast<std::size_t>(*model.findLink("hand")));
+  EXPECT_DOUBLE_EQ(hand.inertial.inertia(0, 0), 0.000004);
+  EXPECT_EQ(warnings.count("link 'hand'"), 0);
 }
 
 // ----- Kautham's own demos (../shared/kautham-demos), when they are there -----
