@@ -265,16 +265,7 @@ void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
     candidate.verdict = evaluator_.judgeNominal(start, candidate.run.end.data());
     return;
   }
-  ParticleRequest request;
-  request.start = start;
-  request.control = candidate.control.data();
-  request.steps = candidate.run.steps;
-  request.poses = from.poses.get();
-  request.robots = from.robotSpread.get();
-  request.recordAfter = candidate.recordAfter;
-  request.particles = settings_.particles;
-  request.streamSeed = candidate.streamSeed;
-  candidate.verdict = evaluator_.runParticles(request, toBeat);
+  candidate.verdict = evaluator_.runParticles(particleRequest(candidate, from), toBeat);
   if (candidate.run.reachedGoal && !candidate.verdict.pruned) settleInGoal(candidate);
 }
 
@@ -282,6 +273,10 @@ void PKpiece::confirm(Candidate& candidate, const Motion& from) {
   if (!candidate.judged) judge(candidate, from, -1.0);  // its belief is needed either way
   candidate.streamSeed = nextStreamSeed();
   candidate.recordAfter = candidate.pieceEnds;
+  candidate.verdict = evaluator_.runParticles(particleRequest(candidate, from), -1.0);
+}
+
+ParticleRequest PKpiece::particleRequest(const Candidate& candidate, const Motion& from) const {
   ParticleRequest request;
   request.start = physics::WorldStateSpace::values(from.state);
   request.control = candidate.control.data();
@@ -291,7 +286,7 @@ void PKpiece::confirm(Candidate& candidate, const Motion& from) {
   request.recordAfter = candidate.recordAfter;
   request.particles = settings_.particles;
   request.streamSeed = candidate.streamSeed;
-  candidate.verdict = evaluator_.runParticles(request, -1.0);
+  return request;
 }
 
 bool PKpiece::withParticles() const { return settings_.uncertainty && settings_.particles > 0; }

@@ -92,6 +92,8 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   /// stands (a goal-reaching one cut where it settled): its belief and goal fraction are
   /// then not the best of several noisy estimates.
   void confirm(Candidate& candidate, const Motion& from);
+  /// The candidate's particle motions from the end of `from`, with its random streams.
+  ParticleRequest particleRequest(const Candidate& candidate, const Motion& from) const;
   Candidate* chooseCandidate(std::vector<Candidate>& valid, const Motion& from);
   bool reachesGoal(const Candidate& candidate) const;
   /// The estimated success of the plan that would end with the candidate (goalConfidence).
