@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "kautham/core/SegmentDistance.h"
+
 namespace kautham::planners {
 
 namespace {
@@ -29,15 +31,6 @@ constexpr double kFingerMiddle = 0.025;  // m
 constexpr double kFootprint = 0.12;  // m
 // Margin above the workspace floor (the goal link may not leave the workspace).
 constexpr double kFloorMargin = 0.012;  // m
-
-/// Horizontal distance from `p` to the segment from `a` to `b`.
-double toSegment(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
-  const Eigen::Vector2d ab = (b - a).head<2>();
-  const Eigen::Vector2d ap = (p - a).head<2>();
-  const double t =
-      ab.squaredNorm() > 0.0 ? std::clamp(ap.dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (ap - t * ab).norm();
-}
 }  // namespace
 
 ClearingPush::ClearingPush(const physics::PlanningContext& context) : context_(context) {
@@ -91,7 +84,10 @@ double ClearingPush::room(const double* state, const Eigen::Vector3d& point,
   const auto& bodies = context_.layout().bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;
-    nearest = std::min(nearest, toSegment(physics::WorldLayout::position(state, b), point, wrist));
+    // Horizontal distances: the objects stand on the table, the gripper above it.
+    const Eigen::Vector2d object = physics::WorldLayout::position(state, b).head<2>();
+    nearest = std::min(nearest, core::distanceToSegment<Eigen::Vector2d>(object, point.head<2>(),
+                                                                         wrist.head<2>()));
   }
   return nearest;
 }

@@ -270,7 +270,7 @@ void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
 }
 
 void PKpiece::confirm(Candidate& candidate, const Motion& from) {
-  if (!candidate.judged) judge(candidate, from, -1.0);  // its belief is needed either way
+  // chooseCandidate judged it already: a goal-reaching one is cut where it settled.
   candidate.streamSeed = nextStreamSeed();
   candidate.recordAfter = candidate.pieceEnds;
   candidate.verdict = evaluator_.runParticles(particleRequest(candidate, from), -1.0);
@@ -399,11 +399,9 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
 std::shared_ptr<const ObjectPoseBelief> PKpiece::posesAfter(const Candidate& chosen, unsigned step,
                                                             const Motion& from) {
   std::vector<std::vector<double>> particles;
-  if (withParticles()) {
-    const std::size_t record = recordIndex(chosen, step);
-    for (const auto& recorded : chosen.verdict.recorded)
-      if (recorded.size() > record) particles.push_back(recorded[record]);
-  }
+  if (withParticles())
+    for (const std::vector<double>* state : particleStatesAt(chosen, step))
+      particles.push_back(*state);
   return from.poses->afterMotion(evaluator_.objectBodies(),
                                  physics::WorldStateSpace::values(from.state),
                                  chosen.run.states[step - 1].data(), particles, fitRng_);
@@ -422,10 +420,7 @@ std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {
 std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(const Candidate& chosen, unsigned step,
                                                           const Motion& from) const {
   if (!settings_.robotSpread || !withParticles()) return nullptr;
-  const std::size_t record = recordIndex(chosen, step);
-  std::vector<const std::vector<double>*> states;
-  for (const auto& particle : chosen.verdict.recorded)
-    if (particle.size() > record) states.push_back(&particle[record]);
+  const std::vector<const std::vector<double>*> states = particleStatesAt(chosen, step);
   // No particle got this far (the belief says so): the parent's spread is the best guess;
   // the nominal robot alone would make what grows from here look certain.
   if (states.empty()) return from.robotSpread;
@@ -437,6 +432,15 @@ std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(const Candidate& chose
       if (disturbed(b, start, chosen.run.states[step - 1].data(), states)) carried.push_back(b);
   }
   return RobotSpread::fromStates(robotPart_, states, std::move(carried));
+}
+
+std::vector<const std::vector<double>*> PKpiece::particleStatesAt(const Candidate& chosen,
+                                                                  unsigned step) {
+  const std::size_t record = recordIndex(chosen, step);
+  std::vector<const std::vector<double>*> states;
+  for (const auto& particle : chosen.verdict.recorded)
+    if (particle.size() > record) states.push_back(&particle[record]);
+  return states;
 }
 
 bool PKpiece::disturbed(std::size_t body, const double* start, const double* nominal,

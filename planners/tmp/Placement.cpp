@@ -2,19 +2,9 @@
 
 #include <algorithm>
 
+#include "kautham/core/SegmentDistance.h"
+
 namespace kautham::planners::tmp {
-
-namespace {
-
-double distanceToSegment(const Eigen::Vector2d& p, const Eigen::Vector2d& a,
-                         const Eigen::Vector2d& b) {
-  const Eigen::Vector2d ab = b - a;
-  const double length = ab.squaredNorm();
-  const double t = length > 0.0 ? std::clamp((p - a).dot(ab) / length, 0.0, 1.0) : 0.0;
-  return (a + t * ab - p).norm();
-}
-
-}  // namespace
 
 bool isFreePlacement(const PlacementRules& rules, const Eigen::Vector2d& centre, double radius) {
   if (!rules.area.contains(centre)) return false;
@@ -25,7 +15,7 @@ bool isFreePlacement(const PlacementRules& rules, const Eigen::Vector2d& centre,
     for (std::size_t i = 0; i < corridor.size(); ++i) {
       const Eigen::Vector2d& a = corridor[i];
       const Eigen::Vector2d& b = corridor[std::min(i + 1, corridor.size() - 1)];
-      if (distanceToSegment(centre, a, b) < clear) return false;
+      if (core::distanceToSegment(centre, a, b) < clear) return false;
     }
   return true;
 }

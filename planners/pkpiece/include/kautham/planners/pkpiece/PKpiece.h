@@ -70,6 +70,10 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   /// that far.
   std::shared_ptr<const RobotSpread> robotSpreadAt(const Candidate& chosen, unsigned step,
                                                    const Motion& from) const;
+  /// The states the chosen candidate's particles had after `step` steps, of those still
+  /// valid then (a recorded step of the candidate).
+  static std::vector<const std::vector<double>*> particleStatesAt(const Candidate& chosen,
+                                                                  unsigned step);
   /// An object body the spread must carry (objectSpread): the nominal run moved it from
   /// `start`, or a particle still has it moving.
   static bool disturbed(std::size_t body, const double* start, const double* nominal,
