@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Geometry>
+
 #include "kautham/core/SegmentDistance.h"
 
 namespace kautham::planners {
@@ -17,8 +19,8 @@ constexpr double kStandOff = 0.05;  // m
 constexpr double kPushThrough = 0.03;  // m
 // The gripper counts as at the stand-off, or on the line of the push, within this.
 constexpr double kOnLine = 0.03;  // m
-// How far below the object's centre the push acts: 4.6 cm up a 12.2 cm can. Lower, the
-// palm grazes the table under control noise.
+// How far below the object's centre the fingers' middle pushes: 4.6 cm up a 12.2 cm can.
+// Lower, the palm grazes the table under control noise.
 constexpr double kBelowCentre = 0.015;  // m
 // The stand-off is reached from this high above the push: lowered onto it, the gripper
 // does not sweep through the objects beside it.
@@ -33,7 +35,8 @@ constexpr double kFootprint = 0.12;  // m
 constexpr double kFloorMargin = 0.012;  // m
 }  // namespace
 
-ClearingPush::ClearingPush(const physics::PlanningContext& context) : context_(context) {
+ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch)
+    : context_(context) {
   const physics::GoalSpec& spec = context.goal().spec();
   if (!spec.freeSpace || !spec.approach || !spec.levelAxis) return;
   back_ = -*spec.approach;
@@ -44,6 +47,9 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context) : context_(c
   across_.normalize();
   halfWidth_ = 0.5 * spec.freeSpace->size.dot(spec.levelAxis->normalized().cwiseAbs());
   lowest_ = context.problem().workspace.min().z() + kFloorMargin;
+  const Eigen::AngleAxisd pitchDown(-pitch, across_);
+  orientation_ = pitchDown * context.goal().nominalGoalPose().linear();
+  fingers_ = pitchDown * Eigen::Vector3d(-back_);
 }
 
 std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const {
@@ -51,9 +57,11 @@ std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const 
   const physics::WorkspaceGoal& goal = context_.goal();
   const std::optional<std::size_t> blocker = goal.freeSpaceBlocker(state);
   if (!blocker) return std::nullopt;
+  // The goal link aims where the fingers' middle meets the object below its centre.
   Eigen::Vector3d object = physics::WorldLayout::position(state, *blocker);
-  object.z() = std::max(object.z() - kBelowCentre, lowest_);
-  object -= kFingerMiddle * back_;
+  object.z() -= kBelowCentre;
+  object += kFingerMiddle * fingers_;
+  object.z() = std::max(object.z(), lowest_);
   // Push away from the side with more room: the stand-off lies on the other side.
   const double standOff = halfWidth_ + kStandOff;
   const Eigen::Vector3d plus = object + standOff * across_;
@@ -68,13 +76,14 @@ std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const 
   const Eigen::Vector3d fromObject = link - object;
   const double along = fromObject.dot(direction);
   const double offLine = (fromObject - along * direction).norm();
-  if (along <= 0.0 && offLine <= kOnLine) return Step{end, (end - link).norm() + endToGoal, true};
+  if (along <= 0.0 && offLine <= kOnLine)
+    return Step{end, orientation_, (end - link).norm() + endToGoal, true};
   const Eigen::Vector3d fromStart = link - start;
   const double pushLength = (end - start).norm();
   if (std::hypot(fromStart.x(), fromStart.y()) <= kOnLine)
-    return Step{start, fromStart.norm() + pushLength + endToGoal, false};
+    return Step{start, orientation_, fromStart.norm() + pushLength + endToGoal, false};
   const Eigen::Vector3d above = start + kAbove * Eigen::Vector3d::UnitZ();
-  return Step{above, (above - link).norm() + kAbove + pushLength + endToGoal, false};
+  return Step{above, orientation_, (above - link).norm() + kAbove + pushLength + endToGoal, false};
 }
 
 double ClearingPush::room(const double* state, const Eigen::Vector3d& point,

@@ -30,8 +30,11 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 }  // namespace
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
-                           bool clearing)
-    : context_(context), evaluator_(evaluator), clearing_(context), clearingOn_(clearing) {}
+                           bool clearing, double pushPitch)
+    : context_(context),
+      evaluator_(evaluator),
+      clearing_(context, pushPitch),
+      clearingOn_(clearing) {}
 
 double GoalSteering::rankDistance(const double* state) const {
   if (clearingOn_)
@@ -49,12 +52,13 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
     if (!clearingOn_) return std::nullopt;
     const std::optional<ClearingPush::Step> step = clearing_.next(start);
     if (!step) return std::nullopt;
-    return steer(start, step->waypoint, step->pushing ? kPushSpeed : kMoveSpeed);
+    return steer(start, step->waypoint, step->orientation, step->pushing ? kPushSpeed : kMoveSpeed);
   }
-  return steer(start, context_.goal().position(), 0.0);
+  return steer(start, context_.goal().position(), context_.goal().nominalGoalPose().linear(), 0.0);
 }
 
 std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eigen::Vector3d& target,
+                                                 const Eigen::Matrix3d& orientation,
                                                  double maxSpeed) const {
   const auto& si = context_.spaceInformation();
   const auto dimension = static_cast<Eigen::Index>(si->getControlSpace()->getDimension());
@@ -84,7 +88,7 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   }
   Eigen::Matrix<double, 6, 1> toGo;
   toGo.head<3>() = target - layout.goalLinkPosition(start);
-  toGo.tail<3>() = kMetresPerRadian * turnRows * turnToGoal(startTurn);
+  toGo.tail<3>() = kMetresPerRadian * turnRows * turnTo(startTurn, orientation);
   if (maxSpeed > 0.0 && toGo.norm() > kMaxStride) toGo *= kMaxStride / toGo.norm();
   const Eigen::Matrix<double, 6, 6> damped =
       jacobian * jacobian.transpose() +
@@ -116,7 +120,8 @@ Eigen::Matrix3d GoalSteering::turnProjection(const Eigen::Matrix3d& turn) const 
   return Eigen::Matrix3d::Identity() - axis * axis.transpose();
 }
 
-Eigen::Vector3d GoalSteering::turnToGoal(const Eigen::Matrix3d& turn) const {
+Eigen::Vector3d GoalSteering::turnTo(const Eigen::Matrix3d& turn,
+                                     const Eigen::Matrix3d& orientation) const {
   const physics::GoalSpec& spec = context_.goal().spec();
   if (!spec.approach) return Eigen::Vector3d::Zero();
   if (!spec.levelAxis) {
@@ -127,12 +132,10 @@ Eigen::Vector3d GoalSteering::turnToGoal(const Eigen::Matrix3d& turn) const {
     return normal.norm() > 1e-12 ? Eigen::Vector3d(angle * normal.normalized())
                                  : Eigen::Vector3d::Zero();
   }
-  // A two-finger gripper is symmetric about its approach: of the two turns that put the
-  // level axis level, aim at the nearer.
-  const Eigen::Matrix3d goal = context_.goal().nominalGoalPose().linear();
-  const Eigen::Matrix3d flipped =
-      Eigen::AngleAxisd(M_PI, spec.approach->normalized()).toRotationMatrix() * goal;
-  const Eigen::Vector3d toGoal = rotationVector(goal * turn.transpose());
+  // A two-finger gripper is symmetric about its approach (the link's +z): of the two turns
+  // to `orientation`, aim at the nearer.
+  const Eigen::Matrix3d flipped = orientation * Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d toGoal = rotationVector(orientation * turn.transpose());
   const Eigen::Vector3d toFlipped = rotationVector(flipped * turn.transpose());
   return toGoal.norm() <= toFlipped.norm() ? toGoal : toFlipped;
 }

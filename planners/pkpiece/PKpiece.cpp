@@ -77,7 +77,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()),
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
-      steering_(context, evaluator_, settings.clearingPush) {
+      steering_(context, evaluator_, settings.clearingPush, settings.pushPitch) {
   specs_.approximateSolutions = true;
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);

@@ -2,6 +2,7 @@
 // kuka_clutter_10 scene (can1 stands on its side pre-grasp) with the real physics.
 
 #include <algorithm>
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,8 @@
 
 namespace kautham::planners {
 namespace {
+
+constexpr double kPitch = 0.45;  // rad, p-KPIECE's default push_pitch
 
 struct ClutterScene {
   core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
@@ -32,7 +35,7 @@ struct ClutterScene {
 
 TEST(ClearingPushTest, StartsAboveAStandOffBesideTheBlockerAndLowEnoughNotToTipIt) {
   ClutterScene scene;
-  const ClearingPush clearing(scene.context);
+  const ClearingPush clearing(scene.context, kPitch);
   const std::vector<double>& start = scene.context.startState();
   const std::optional<ClearingPush::Step> step = clearing.next(start.data());
   ASSERT_TRUE(step.has_value());
@@ -48,7 +51,7 @@ TEST(ClearingPushTest, StartsAboveAStandOffBesideTheBlockerAndLowEnoughNotToTipI
 
 TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
   ClutterScene scene;
-  const ClearingPush clearing(scene.context);
+  const ClearingPush clearing(scene.context, kPitch);
   const std::vector<double>& start = scene.context.startState();
   const ClearingPush::Step first = *clearing.next(start.data());
   const Eigen::Vector3d can = scene.position(start, "can1");
@@ -64,17 +67,21 @@ TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
   const std::optional<ClearingPush::Step> push = clearing.next(state.data());
   ASSERT_TRUE(push.has_value());
   EXPECT_TRUE(push->pushing);
-  // Across, to the far side of the can's centre, 4.6 cm up the 12.2 cm can (its centre is
-  // 6.1 cm up): pushed above 6.6 cm (radius / friction), a can tips before it slides.
+  // Across, to the far side of the can's centre, with the fingers' middle (2.5 cm back from
+  // the fingertips along the approach) 4.6 cm up the 12.2 cm can (its centre is 6.1 cm up):
+  // pushed above 6.6 cm (radius / friction), a can tips before it slides. The gripper points
+  // down by the push's pitch, so the wrist rides above the table.
   EXPECT_LT((push->waypoint.x() - can.x()) * (standOff.x() - can.x()), 0.0);
-  EXPECT_NEAR(push->waypoint.z(), can.z() - 0.015, 1e-9);
+  const Eigen::Vector3d fingers = push->orientation.col(2);
+  EXPECT_NEAR(fingers.z(), -std::sin(kPitch), 1e-9);
+  EXPECT_NEAR((push->waypoint - 0.025 * fingers).z(), can.z() - 0.015, 1e-9);
   EXPECT_LT(push->remaining, first.remaining);
 }
 
 TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true);
+  const GoalSteering steering(scene.context, evaluator, true, kPitch);
   const std::vector<double>& start = scene.context.startState();
   const double blocked = steering.rankDistance(start.data());
   EXPECT_GT(blocked, GoalSteering::kBlockedRank + 0.3);
@@ -84,7 +91,7 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
   EXPECT_NEAR(clear, scene.context.goal().searchDistance(cleared.data()), 1e-12);
   EXPECT_LT(clear, blocked);
   // Without the clearing push the rank is the search distance, blocked or not.
-  const GoalSteering plain(scene.context, evaluator, false);
+  const GoalSteering plain(scene.context, evaluator, false, kPitch);
   EXPECT_NEAR(plain.rankDistance(start.data()), scene.context.goal().searchDistance(start.data()),
               1e-12);
 }
@@ -92,8 +99,8 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
 TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true);
-  const ClearingPush clearing(scene.context);
+  const GoalSteering steering(scene.context, evaluator, true, kPitch);
+  const ClearingPush clearing(scene.context, kPitch);
   const std::vector<double>& start = scene.context.startState();
   const Eigen::Vector3d waypoint = clearing.next(start.data())->waypoint;
   const std::optional<NominalMotion> motion = steering.towardsGoal(start.data());

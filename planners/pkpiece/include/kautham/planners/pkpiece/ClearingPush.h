@@ -13,10 +13,11 @@ namespace kautham::planners {
 ///
 /// The gripper first goes above a stand-off point beside the object (on the side with more
 /// room), down to the push height, then sweeps across the approach through the object's
-/// centre. The push is low (1.5 cm below the object's centre, 4.6 cm up a 12.2 cm can)
-/// because a can pushed at a side pre-grasp's height, near its top, tips over before it
-/// slides: it slides only when pushed below radius / friction (6.6 cm for a can with
-/// friction 0.5).
+/// centre. It points down a little all the while: held level that low, the wrist (behind
+/// the gripper, and wider) would drag on the table. The push is low (1.5 cm below the object's
+/// centre, 4.6 cm up a 12.2 cm can) because a can pushed at a side pre-grasp's height, near its
+/// top, tips over before it slides: it slides only when pushed below radius / friction (6.6 cm for
+/// a can with friction 0.5).
 ///
 /// The waypoints follow the object as it moves, so a push in progress goes on until the
 /// object leaves the free space. `remaining` is the length of the rest of this plan and on
@@ -25,12 +26,14 @@ namespace kautham::planners {
 class ClearingPush {
  public:
   struct Step {
-    Eigen::Vector3d waypoint;  ///< where the goal link heads next
-    double remaining = 0.0;    ///< m of the clearing plan still to go, and on to the goal
-    bool pushing = false;      ///< the goal link is behind the object, on the line of the push
+    Eigen::Vector3d waypoint;                                   ///< where the goal link heads next
+    Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();  ///< and how it is turned there
+    double remaining = 0.0;  ///< m of the clearing plan still to go, and on to the goal
+    bool pushing = false;    ///< the goal link is behind the object, on the line of the push
   };
 
-  explicit ClearingPush(const physics::PlanningContext& context);
+  /// `pitch` (rad): how far the gripper points down on the way to and during the push.
+  ClearingPush(const physics::PlanningContext& context, double pitch);
 
   /// None when the free space is clear, or the goal has no free space or side approach.
   std::optional<Step> next(const double* state) const;
@@ -44,6 +47,10 @@ class ClearingPush {
   Eigen::Vector3d across_ = Eigen::Vector3d::Zero();  ///< level, across the approach
   double halfWidth_ = 0.0;                            ///< of the free space, across the approach
   double lowest_ = 0.0;  ///< the lowest the goal link may go (workspace floor and margin)
+  /// The push's posture: the goal's orientation pitched down, and its approach (where the
+  /// fingers point).
+  Eigen::Matrix3d orientation_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d fingers_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace kautham::planners

@@ -25,7 +25,9 @@ class GoalSteering {
   /// Blocked states rank behind every clear one by at least this much (m).
   static constexpr double kBlockedRank = 0.5;
 
-  GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing);
+  /// `pushPitch` (rad): how far the clearing push points the gripper down.
+  GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
+               double pushPitch);
 
   /// The steering motion from `start`; none when a probe step is invalid, the goal is a
   /// configuration, or the goal's free space is blocked and there is no clearing push.
@@ -36,15 +38,17 @@ class GoalSteering {
   double rankDistance(const double* state) const;
 
  private:
-  /// A control that drives the goal link straight at `target`; with `maxSpeed` > 0 (m/s)
-  /// no faster than that and at most a stride far.
+  /// A control that drives the goal link straight at `target` and turns it towards
+  /// `orientation` (as far as the goal cares about turns); with `maxSpeed` > 0 (m/s) no
+  /// faster than that and at most a stride far.
   std::optional<NominalMotion> steer(const double* start, const Eigen::Vector3d& target,
-                                     double maxSpeed) const;
+                                     const Eigen::Matrix3d& orientation, double maxSpeed) const;
   /// What of a turn (world rotation vector) the goal cares about: all of it with a level
   /// axis, none without an approach, the part that tilts the approach axis otherwise.
   Eigen::Matrix3d turnProjection(const Eigen::Matrix3d& turn) const;
-  /// The rotation vector (world frame) from the goal link's orientation `turn` to the goal's.
-  Eigen::Vector3d turnToGoal(const Eigen::Matrix3d& turn) const;
+  /// The rotation vector (world frame) from the goal link's orientation `turn` to
+  /// `orientation` (with a level axis; otherwise to the goal's approach).
+  Eigen::Vector3d turnTo(const Eigen::Matrix3d& turn, const Eigen::Matrix3d& orientation) const;
 
   const physics::PlanningContext& context_;
   MotionEvaluator& evaluator_;

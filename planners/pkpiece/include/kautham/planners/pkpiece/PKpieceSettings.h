@@ -43,6 +43,9 @@ struct PKpieceSettings {
   /// While an object fills the goal's free space, the goal bias grows the motions furthest
   /// along a push that clears it, and steers that push (ClearingPush).
   bool clearingPush;
+  /// How far the clearing push points the gripper down (rad), so the wrist rides above the
+  /// table.
+  double pushPitch;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -142,6 +145,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(1)
                    .describe("while an object fills the goal's free space, the goal bias grows "
                              "and steers a low push that moves it out sideways"))
+          .add(&S::pushPitch,
+               Parameter::real("push_pitch")
+                   .byDefault(0.45)
+                   .range(0.0, 1.5)
+                   .describe("how far the clearing push points the gripper down (rad), so the "
+                             "wrist rides above the table"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")
