@@ -72,11 +72,11 @@ void addPlanProperties(const json& plan, RunProperties& properties) {
       boolean(!violated && replay.at("reached_goal").get<bool>());
   properties["simplification time REAL"] = real(0.0);  // control paths are not simplified
   properties["objects moved INTEGER"] = integer(replay.at("moved_objects").size());
-  // The planner's own estimate that the plan succeeds when executed (p-KPIECE's).
-  const auto pathBelief = plannerStatistic(plan, "solution_path_belief");
-  const auto goalConfidence = plannerStatistic(plan, "best_goal_confidence");
-  if (result.at("solved").get<bool>() && pathBelief && goalConfidence)
-    properties["estimated success REAL"] = real(*pathBelief * *goalConfidence);
+  // The planner's own estimate that the plan succeeds when executed (p-KPIECE's). Not the
+  // path belief times best_goal_confidence: that counts the path twice (until 2026-11-23).
+  const auto confidence = plannerStatistic(plan, "solution_confidence");
+  if (result.at("solved").get<bool>() && confidence)
+    properties["estimated success REAL"] = real(*confidence);
 }
 
 }  // namespace

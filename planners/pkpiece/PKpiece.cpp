@@ -37,6 +37,9 @@ struct PKpiece::Motion {
   double goalDistance = 0.0;
   CellData* cell = nullptr;
   bool reachesGoal = false;  ///< ends a plan estimated to succeed often enough (goalConfidence)
+  /// With reachesGoal: that estimate, the path belief to its parent times the fraction of its
+  /// (confirming) particles that end valid in the goal.
+  double successEstimate = 0.0;
 };
 
 struct PKpiece::CellData {
@@ -102,6 +105,11 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   addPlannerProgressProperty("solution_path_belief REAL", [this] {
     return solutionBeliefs_.empty() ? std::string("nan") : std::to_string(solutionPathBelief_);
   });
+  // The plan's estimated execution success: what goal_confidence compared, for the candidate
+  // that ended the search (empty for an approximate solution).
+  addPlannerProgressProperty("solution_confidence REAL", [this] {
+    return solutionConfidence_ ? std::to_string(*solutionConfidence_) : std::string("nan");
+  });
 }
 
 PKpiece::~PKpiece() {
@@ -123,6 +131,7 @@ void PKpiece::clear() {
   goalCandidates_ = 0;
   bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();
+  solutionConfidence_.reset();
 }
 
 std::uint64_t PKpiece::nextStreamSeed() {
@@ -497,6 +506,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->robotSpread = std::move(robotSpread);
   motion->expansion = iteration_;
   motion->reachesGoal = reachesGoal(chosen) && &end == &chosen.run.states.back();
+  if (motion->reachesGoal) motion->successEstimate = solutionConfidence(chosen);
   Motion* raw = motion.get();
   motions_.push_back(std::move(motion));
   addMotion(raw);
@@ -512,6 +522,8 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
   const double stepSize = csi->getPropagationStepSize();
   solutionBeliefs_.clear();
   solutionPathBelief_ = end->pathBelief;
+  solutionConfidence_.reset();
+  if (exact) solutionConfidence_ = end->successEstimate;
   path->append(chain.front()->state);
   for (std::size_t i = 1; i < chain.size(); ++i) {
     // The pieces of one expansion are one control held for their summed duration, as its

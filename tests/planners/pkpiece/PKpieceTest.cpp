@@ -111,6 +111,13 @@ TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBe
   double product = 1.0;
   for (double b : run.outcome.beliefs) product *= b;
   EXPECT_NEAR(std::stod(run.property("solution_path_belief")), product, 1e-6);
+  // The plan's estimated success: the path belief before its last control times the share of
+  // that control's particles ending valid in the goal; what ended the search (goal_confidence
+  // 0.5), and the path is not counted twice.
+  const double beforeLast = product / run.outcome.beliefs.back();
+  const double confidence = std::stod(run.property("solution_confidence"));
+  EXPECT_LE(confidence, beforeLast + 1e-6);
+  EXPECT_GE(confidence, 0.5);
   // The pieces a motion was cut into are merged back: no two neighbours share a control.
   for (std::size_t i = 1; i < run.outcome.controls.size(); ++i)
     EXPECT_NE(run.outcome.controls[i].values, run.outcome.controls[i - 1].values) << i;

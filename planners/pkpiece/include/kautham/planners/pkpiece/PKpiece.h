@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -126,7 +127,8 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   double bestGoalConfidence_ = 0.0;   ///< the best solutionConfidence among them
   std::vector<double> solutionBeliefs_;
   double solutionPathBelief_ = 1.0;
-  ompl::base::State* scratch_ = nullptr;  ///< for projecting raw states
+  std::optional<double> solutionConfidence_;  ///< the exact solution's estimated success
+  ompl::base::State* scratch_ = nullptr;      ///< for projecting raw states
   std::shared_ptr<const RobotSpread::Part> robotPart_;
   GoalSteering steering_;
   bool steerNext_ = false;  ///< the motion being expanded was chosen by the goal bias
