@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <ompl/base/PlannerData.h>
 #include <ompl/control/PathControl.h>
@@ -38,7 +39,8 @@ struct PKpiece::Motion {
   CellData* cell = nullptr;
   bool reachesGoal = false;  ///< ends a plan estimated to succeed often enough (goalConfidence)
   /// With reachesGoal: that estimate, the path belief to its parent times the fraction of its
-  /// (confirming) particles that end valid in the goal.
+  /// (confirming) particles that end valid in the goal; once verified (verifyRuns), the
+  /// fraction of the plan's sampled executions that succeeded.
   double successEstimate = 0.0;
 };
 
@@ -80,7 +82,10 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()),
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
-      steering_(context, evaluator_, settings.clearingPush, settings.pushPitch) {
+      steering_(context, evaluator_, settings.clearingPush, settings.pushPitch),
+      // Verification streams: a function of the seed, apart from the particles' (and from
+      // `kautham validate`'s, whose seeds are small numbers).
+      verifier_(context, streamBase_ ^ 0x5645524946590000ULL) {
   specs_.approximateSolutions = true;
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
@@ -94,6 +99,11 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   addPlannerProgressProperty("best_goal_confidence REAL", [this] {
     return goalCandidates_ == 0 ? std::string("nan") : std::to_string(bestGoalConfidence_);
   });
+  // Plans executed in sampled worlds before one ended the search, and those that failed.
+  addPlannerProgressProperty("verifications INTEGER",
+                             [this] { return std::to_string(verifications_); });
+  addPlannerProgressProperty("verification_rejections INTEGER",
+                             [this] { return std::to_string(verificationRejections_); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -132,6 +142,8 @@ void PKpiece::clear() {
   bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();
   solutionConfidence_.reset();
+  verifications_ = 0;
+  verificationRejections_ = 0;
 }
 
 std::uint64_t PKpiece::nextStreamSeed() {
@@ -513,10 +525,44 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   return raw;
 }
 
-void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
+std::vector<std::pair<const PKpiece::Motion*, unsigned>> PKpiece::planSegments(const Motion* end) {
   std::vector<const Motion*> chain;
-  for (const Motion* m = end; m; m = m->parent) chain.push_back(m);
+  for (const Motion* m = end; m->parent; m = m->parent) chain.push_back(m);
   std::reverse(chain.begin(), chain.end());
+  std::vector<std::pair<const Motion*, unsigned>> segments;
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    unsigned steps = chain[i]->steps;
+    while (i + 1 < chain.size() && chain[i + 1]->expansion == chain[i]->expansion)
+      steps += chain[++i]->steps;
+    segments.emplace_back(chain[i], steps);
+  }
+  return segments;
+}
+
+bool PKpiece::passesVerification(Motion* end) {
+  if (!withParticles() || settings_.verifyRuns == 0) return true;
+  std::vector<physics::ControlStep> controls;
+  for (const auto& [motion, steps] : planSegments(end)) {
+    physics::ControlStep step;
+    step.values = motion->control;
+    step.steps = steps;
+    controls.push_back(std::move(step));
+  }
+  ++verifications_;
+  const VerificationResult result =
+      verifier_.verify(controls, settings_.verifyRuns, settings_.goalConfidence);
+  if (result.passed) {
+    // The first plan to pass is, among all those tried, one whose runs went well: fresh
+    // runs, whatever they find, give its estimated success without that bias.
+    end->successEstimate = verifier_.verify(controls, settings_.verifyRuns, 0.0).rate();
+    return true;
+  }
+  ++verificationRejections_;
+  end->reachesGoal = false;
+  return false;
+}
+
+void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
   auto path = std::make_shared<ompl::control::PathControl>(si_);
   auto* csi = static_cast<ompl::control::SpaceInformation*>(si_.get());
   const double stepSize = csi->getPropagationStepSize();
@@ -524,19 +570,16 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
   solutionPathBelief_ = end->pathBelief;
   solutionConfidence_.reset();
   if (exact) solutionConfidence_ = end->successEstimate;
-  path->append(chain.front()->state);
-  for (std::size_t i = 1; i < chain.size(); ++i) {
-    // The pieces of one expansion are one control held for their summed duration, as its
-    // particles ran it (and as an execution with control noise must draw it: once).
-    unsigned steps = chain[i]->steps;
-    while (i + 1 < chain.size() && chain[i + 1]->expansion == chain[i]->expansion)
-      steps += chain[++i]->steps;
+  const Motion* root = end;
+  while (root->parent) root = root->parent;
+  path->append(root->state);
+  for (const auto& [motion, steps] : planSegments(end)) {
     ompl::control::Control* control = csi->allocControl();
-    std::copy(chain[i]->control.begin(), chain[i]->control.end(),
+    std::copy(motion->control.begin(), motion->control.end(),
               control->as<ompl::control::RealVectorControlSpace::ControlType>()->values);
-    path->append(chain[i]->state, control, steps * stepSize);
+    path->append(motion->state, control, steps * stepSize);
     csi->freeControl(control);
-    solutionBeliefs_.push_back(chain[i]->belief);
+    solutionBeliefs_.push_back(motion->belief);
   }
   pdef_->addSolutionPath(path, !exact, distance, getName());
 }
@@ -564,7 +607,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     cell->score *= added ? kGoodScoreFactor : kBadScoreFactor;
     ++iteration_;
     grid_.updateAll();  // beliefs are normalised over all cells: every importance changes
-    if (added && added->reachesGoal) {
+    if (added && added->reachesGoal && passesVerification(added)) {
       recordSolution(added, true, added->goalDistance);
       return ompl::base::PlannerStatus::EXACT_SOLUTION;
     }

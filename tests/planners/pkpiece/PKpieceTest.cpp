@@ -87,7 +87,9 @@ TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
 }
 
 TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
-  const std::vector<ParameterOverride> small = {{"particles", "6"}, {"candidates", "4"}};
+  // Without whole-plan verification: this scene's plans rarely pass it (see below).
+  const std::vector<ParameterOverride> small = {
+      {"particles", "6"}, {"candidates", "4"}, {"verify_runs", "0"}};
   std::vector<ParameterOverride> full = small;
   full.push_back({"prune_candidates", "0"});
   const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, small);
@@ -104,10 +106,12 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
 }
 
 TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBeliefs) {
+  // The particles' estimate ends the search (no verification by whole executions).
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
-                           {{"particles", "5"}, {"candidates", "4"}});
+                           {{"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}});
   ASSERT_TRUE(run.outcome.solved);
   ASSERT_GE(run.outcome.controls.size(), 2u);
+  EXPECT_EQ(run.property("verifications"), "0");
   double product = 1.0;
   for (double b : run.outcome.beliefs) product *= b;
   EXPECT_NEAR(std::stod(run.property("solution_path_belief")), product, 1e-6);
@@ -123,8 +127,29 @@ TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBe
     EXPECT_NE(run.outcome.controls[i].values, run.outcome.controls[i - 1].values) << i;
 }
 
+TEST(PKpieceTest, APlanEndsTheSearchOnlyIfEnoughOfItsExecutionsSucceed) {
+  // verify_runs: the plan is executed in sampled worlds before it may end the search; its
+  // estimated success is then a fraction of as many fresh executions. This scene's plans
+  // succeed in about a quarter of executions (their particles say nearly all): 0.2 is reachable.
+  const PlanRun run = plan(
+      "tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
+      {{"particles", "5"}, {"candidates", "4"}, {"verify_runs", "20"}, {"goal_confidence", "0.2"}});
+  ASSERT_TRUE(run.outcome.solved);
+  const long verifications = std::stol(run.property("verifications"));
+  EXPECT_GE(verifications, 1);
+  EXPECT_EQ(std::stol(run.property("verification_rejections")), verifications - 1);
+  const double confidence = std::stod(run.property("solution_confidence"));
+  EXPECT_NEAR(confidence * 20.0, std::round(confidence * 20.0), 1e-9);
+  // Without uncertainty there is nothing to sample: no verification.
+  const PlanRun nominal = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
+                               {{"uncertainty", "0"}, {"verify_runs", "20"}});
+  ASSERT_TRUE(nominal.outcome.solved);
+  EXPECT_EQ(nominal.property("verifications"), "0");
+}
+
 TEST(PKpieceTest, SameSeedGivesTheSamePlan) {
-  const std::vector<ParameterOverride> small = {{"particles", "3"}, {"candidates", "3"}};
+  const std::vector<ParameterOverride> small = {
+      {"particles", "3"}, {"candidates", "3"}, {"verify_runs", "10"}, {"goal_confidence", "0.2"}};
   const PlanRun first = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
   const PlanRun second = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
   ASSERT_TRUE(first.outcome.solved);

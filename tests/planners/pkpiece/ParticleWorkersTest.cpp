@@ -169,10 +169,16 @@ TEST(ParticleWorkersTest, NominalRunsInWorkersAreTheRunsOneByOne) {
 PlanOutcome planWithThreads(const std::string& threads) {
   const core::Problem problem =
       core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
-  const PlanRequest request = makeRequest(
-      problem, "p-KPIECE",
-      {{"particles", "4"}, {"candidates", "3"}, {"time_limit", "300"}, {"threads", threads}},
-      seedRandomness(1));
+  const PlanRequest request =
+      makeRequest(problem, "p-KPIECE",
+                  // Whole-plan verification included: its executions run in this process.
+                  {{"particles", "4"},
+                   {"candidates", "3"},
+                   {"verify_runs", "10"},
+                   {"goal_confidence", "0.2"},
+                   {"time_limit", "300"},
+                   {"threads", threads}},
+                  seedRandomness(2));
   physics::PlanningContext context(problem, 0, request.propagation());
   return solve(context, request);
 }

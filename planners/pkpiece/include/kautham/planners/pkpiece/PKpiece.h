@@ -16,6 +16,7 @@
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
 #include "kautham/planners/pkpiece/ObjectPoseBelief.h"
 #include "kautham/planners/pkpiece/PKpieceSettings.h"
+#include "kautham/planners/pkpiece/PlanVerifier.h"
 #include "kautham/planners/pkpiece/RobotSpread.h"
 
 namespace kautham::planners {
@@ -105,6 +106,14 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   double solutionConfidence(const Candidate& candidate) const;
   static void computeImportance(Grid::Cell* cell, void* planner);
   void recordSolution(const Motion* end, bool exact, double distance);
+  /// The plan from the root to `end`, one segment per expansion: the pieces of one expansion
+  /// are one control held for their summed duration (as its particles ran it). Each segment
+  /// is its last motion and its steps.
+  static std::vector<std::pair<const Motion*, unsigned>> planSegments(const Motion* end);
+  /// Whether the plan ending with `end` (a motion that reaches the goal) may end the search:
+  /// with verifyRuns, only if enough of its sampled executions succeed (PlanVerifier); then
+  /// as many fresh executions give its estimated success. A plan that fails stays in the tree.
+  bool passesVerification(Motion* end);
   std::uint64_t nextStreamSeed();
 
   physics::PlanningContext& context_;
@@ -131,6 +140,9 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   ompl::base::State* scratch_ = nullptr;      ///< for projecting raw states
   std::shared_ptr<const RobotSpread::Part> robotPart_;
   GoalSteering steering_;
+  PlanVerifier verifier_;
+  std::uint64_t verifications_ = 0;           ///< plans executed in sampled worlds (verifyRuns)
+  std::uint64_t verificationRejections_ = 0;  ///< of those, the ones that did not pass
   bool steerNext_ = false;  ///< the motion being expanded was chosen by the goal bias
 };
 

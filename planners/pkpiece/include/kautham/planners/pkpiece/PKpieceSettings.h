@@ -46,6 +46,11 @@ struct PKpieceSettings {
   /// How far the clearing push points the gripper down (rad), so the wrist rides above the
   /// table.
   double pushPitch;
+  /// Before a plan ends the search, it is executed this many times open loop in sampled
+  /// worlds (PlanVerifier); it ends the search only if at least goalConfidence of them
+  /// succeed, and as many fresh executions then give its estimated success. 0: the
+  /// particles' estimate decides.
+  unsigned verifyRuns;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -151,6 +156,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0.0, 1.5)
                    .describe("how far the clearing push points the gripper down (rad), so the "
                              "wrist rides above the table"))
+          .add(&S::verifyRuns,
+               Parameter::integer("verify_runs")
+                   .byDefault(50)
+                   .range(0, 100000)
+                   .describe("executions of a whole plan in sampled worlds before it may end the "
+                             "search (as validate runs it); at least goal_confidence of them must "
+                             "succeed (0: the particles' estimate decides)"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")
