@@ -542,12 +542,8 @@ std::vector<std::pair<const PKpiece::Motion*, unsigned>> PKpiece::planSegments(c
 bool PKpiece::passesVerification(Motion* end) {
   if (!withParticles() || settings_.verifyRuns == 0) return true;
   std::vector<physics::ControlStep> controls;
-  for (const auto& [motion, steps] : planSegments(end)) {
-    physics::ControlStep step;
-    step.values = motion->control;
-    step.steps = steps;
-    controls.push_back(std::move(step));
-  }
+  for (const auto& [motion, steps] : planSegments(end))
+    controls.push_back({motion->control, steps});
   ++verifications_;
   const VerificationResult result =
       verifier_.verify(controls, settings_.verifyRuns, settings_.goalConfidence);

@@ -107,8 +107,9 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   static void computeImportance(Grid::Cell* cell, void* planner);
   void recordSolution(const Motion* end, bool exact, double distance);
   /// The plan from the root to `end`, one segment per expansion: the pieces of one expansion
-  /// are one control held for their summed duration (as its particles ran it). Each segment
-  /// is its last motion and its steps.
+  /// are one control held for their summed duration, as its particles ran it (and as an
+  /// execution with control noise must draw it: once). Each segment is its last motion and
+  /// its steps.
   static std::vector<std::pair<const Motion*, unsigned>> planSegments(const Motion* end);
   /// Whether the plan ending with `end` (a motion that reaches the goal) may end the search:
   /// with verifyRuns, only if enough of its sampled executions succeed (PlanVerifier); then
