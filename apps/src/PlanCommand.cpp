@@ -69,8 +69,10 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
              stats.physicsSteps / std::max(stats.planningTime, 1e-9));
   if (!stats.plannerProperties.empty()) {
     std::string properties;
+    // OMPL's properties say "nan" for a value not measured yet (no goal candidate, say): a
+    // person reads "-" as that, "nan" as a fault.
     for (const auto& [name, value] : stats.plannerProperties)
-      properties += (properties.empty() ? "" : ", ") + name + " " + value;
+      properties += (properties.empty() ? "" : ", ") + name + " " + (value == "nan" ? "-" : value);
     fmt::print("planner   {}\n", properties);
   }
   // A tree that hardly grows: say which rules rejected the states the planner tried.

@@ -137,6 +137,14 @@ TEST_F(PlanCommandTest, UnsolvedWithinTheTimeLimitExitsOne) {
   EXPECT_NE(run.output.find("solved    no"), std::string::npos) << run.output;
 }
 
+TEST_F(PlanCommandTest, AValueNotMeasuredYetPrintsAsADash) {
+  // Stopped before any candidate reached the goal, p-KPIECE has no goal confidence yet.
+  const CommandRun run =
+      kautham("plan problems/pusher_cans_5.xml --planner p-KPIECE --seed 1 --time 0.05");
+  EXPECT_NE(run.output.find("best_goal_confidence -,"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("nan"), std::string::npos) << run.output;
+}
+
 TEST_F(PlanCommandTest, PlannersListsEveryPlannerWithItsParameters) {
   const CommandRun run = kautham("planners");
   EXPECT_EQ(run.exitCode, 0);
