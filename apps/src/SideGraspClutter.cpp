@@ -114,10 +114,11 @@ const std::vector<SideSetup>& sideSetups() {
        "yumi",
        R"(X="0.0" Y="-0.3" Z="0.75" WX="0" WY="0" WZ="1" TH="1.5707963")",
        "robots/controls/yumi_left_arm_open.cntr",
-       "0.2765 0.6264 0.7797 0.7341 0.5461 0.8343 0.4128",
+       "0.3397 0.2856 0.9063 0.8918 0.3786 0.7651 0.4645",
        "normalized left arm axes 1, 2, 7, 3, 4, 5, 6: the left gripper level and pointing at\n"
-       "             the glass, TCP at (-0.1, -0.06, 1.0), 30 cm from the pre-grasp; the right "
-       "arm folded away.",
+       "             the glass, TCP at (-0.1, -0.02, 1.0), 27 cm from the pre-grasp, the wrist "
+       "clear\n"
+       "             of the body; the right arm folded away.",
        "yumi_left_tcp",
        "objects/slim_glass.urdf",
        "glass",

@@ -2,12 +2,14 @@
 // and checked by `kautham check` (the real physics), its reproducibility and its refusals.
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <Eigen/Core>
 
 #include "TestPaths.h"
 #include "apps/CommandTestSupport.h"
@@ -226,6 +228,20 @@ TEST_F(GenerateCommandTest, BadArgumentsExitTwo) {
   EXPECT_EQ(kautham("generate").exitCode, 2);                   // no kind of scene
 }
 
+/// The start of a side scene has the gripper pointing at the target, as docs/scenes.md says:
+/// `check` prints the goal link's +z (its approach axis) at the start. (The YuMi's start once
+/// pointed it back at the robot, and every plan began with a half turn of the wrist.)
+void expectStartPointsAlongTheApproach(const std::string& checkOutput,
+                                       const Eigen::Vector3d& approach, const std::string& name) {
+  const std::regex axis(
+      R"(start +\S+: \S+ at \([^)]*\), its \+z along \(([-0-9.]+), ([-0-9.]+), ([-0-9.]+)\))");
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(checkOutput, match, axis)) << name << "\n" << checkOutput;
+  const Eigen::Vector3d startAxis(std::stod(match[1]), std::stod(match[2]), std::stod(match[3]));
+  EXPECT_GT(startAxis.normalized().dot(approach.normalized()), std::cos(0.3))
+      << name << ": the gripper points along " << startAxis.transpose() << " at the start";
+}
+
 /// The dense suite's promises (docs/scenes.md): the same bytes for the same arguments, objects
 /// apart, ceil(N/5) blockers from 10 objects on as `kautham check` counts them
 /// (core::approachBlockers, the goal's corridor and free space), and a valid start.
@@ -261,6 +277,7 @@ TEST_F(GenerateCommandTest, SideScenesAreReproducibleAndBlockTheApproach) {
       const CommandRun check = kautham("check " + (folder / name).string() + " --model-dir models");
       ASSERT_EQ(check.exitCode, 0) << name << "\n" << check.output;
       EXPECT_NE(check.output.find("start valid"), std::string::npos) << check.output;
+      expectStartPointsAlongTheApproach(check.output, *goal.approach, name);
       EXPECT_NE(check.output.find("blockers    " + std::to_string(blockers.size()) + " of " +
                                   std::to_string(objects) + " movable objects"),
                 std::string::npos)
