@@ -4,6 +4,7 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
+#include "kautham/physics/Execution.h"
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::planners {
@@ -25,6 +26,17 @@ MotionEvaluator::~MotionEvaluator() = default;
 void MotionEvaluator::useWorkers(unsigned threads) {
   workers_.reset();
   if (threads > 1) workers_ = std::make_unique<ParticleWorkers>(runner_, threads - 1);
+}
+
+std::vector<bool> MotionEvaluator::runExecutions(const std::vector<physics::ControlStep>& controls,
+                                                 const std::vector<std::uint64_t>& seeds) {
+  if (workers_) return workers_->execute(controls, seeds);
+  std::vector<bool> reached;
+  for (std::uint64_t seed : seeds) {
+    std::mt19937_64 rng(seed);
+    reached.push_back(physics::execute(context_, controls, rng, true).reachedGoal);
+  }
+  return reached;
 }
 
 ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion& motion,

@@ -85,7 +85,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       steering_(context, evaluator_, settings.clearingPush, settings.pushPitch),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
-      verifier_(context, streamBase_ ^ 0x5645524946590000ULL) {
+      verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL) {
   specs_.approximateSolutions = true;
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);

@@ -15,6 +15,8 @@
 #include <system_error>
 #include <thread>
 
+#include "kautham/physics/Execution.h"
+
 namespace kautham::planners {
 
 namespace {
@@ -23,12 +25,18 @@ namespace {
 // runs a job of its own before handing out the next.
 constexpr unsigned kJobsPerWorker = 2;
 
-// Messages: a job is [index, steps, goal stop, n] (uint64), contact (3 doubles), target
-// reference (3), start state, control, then its n record steps (uint64); a result is [index,
-// valid, goal from, propagations, physics steps, n] (uint64), end state, then its n recorded
-// states.
-// Each is read as its fixed part, then the n items that part announces.
+// Messages. A job starts with its kind (uint64).
+// - A particle job is [index, steps, goal stop, n] (uint64), contact (3 doubles), target
+//   reference (3), start state, control, then its n record steps (uint64).
+// - An execution job is [index, seed, m] (uint64), then m controls, each [steps, gripper
+//   action, object + 1, k] (uint64) and its k values (doubles).
+// A result, of either, is [index, valid, goal from, propagations, physics steps, n] (uint64),
+// end state, then its n recorded states (an execution: valid is "reached the goal", n = 0).
+// Each is read as its fixed part, then the items that part announces.
+enum class JobKind : std::uint64_t { Particle = 0, Execution = 1 };
 constexpr std::size_t kJobHeader = 4 * sizeof(std::uint64_t) + 6 * sizeof(double);
+constexpr std::size_t kExecutionHeader = 3 * sizeof(std::uint64_t);
+constexpr std::size_t kControlHeader = 4 * sizeof(std::uint64_t);
 constexpr std::size_t kResultHeader = 6 * sizeof(std::uint64_t);
 
 std::size_t jobSize(const ParticleRunner& runner) {
@@ -39,8 +47,10 @@ std::size_t resultSize(const ParticleRunner& runner) {
   return kResultHeader + runner.stateSize() * sizeof(double);
 }
 
-// Items announced by a message: more than a motion has steps is a corrupt message.
+// Items announced by a message: more than a motion has steps (or a plan controls, or a control
+// values) is a corrupt message.
 constexpr std::uint64_t kMaxRecords = 1u << 16;
+constexpr std::uint64_t kMaxControlValues = 1u << 10;
 
 /// Appends raw bytes; reads them back in order.
 class Packer {
@@ -173,56 +183,18 @@ void ParticleWorkers::serve(int fd) {
   std::signal(SIGINT, SIG_IGN);
   int code = 0;
   try {
-    const std::size_t stateSize = runner_.stateSize();
-    const std::size_t controlSize = runner_.controlSize();
-    const physics::PhysicsPropagator& propagator = runner_.context().propagator();
-    ParticleJob job;
-    job.start.resize(stateSize);
-    job.control.resize(controlSize);
     for (;;) {
-      buffer_.resize(jobSize(runner_));
-      const Io in = readAll(fd, buffer_.data(), buffer_.size());
+      std::uint64_t kind = 0;
+      const Io in = readAll(fd, &kind, sizeof kind);
       if (in != Io::Ok) {
         code = in == Io::Closed ? 0 : 1;
         break;
       }
-      Unpacker unpack(buffer_);
-      const std::uint64_t index = unpack.u64();
-      job.steps = static_cast<unsigned>(unpack.u64());
-      job.goalStop = static_cast<GoalStop>(unpack.u64());
-      const std::uint64_t records = unpack.u64();
-      job.contact.friction = unpack.real();
-      job.contact.erp = unpack.real();
-      job.contact.cfm = unpack.real();
-      for (int k = 0; k < 3; ++k) job.targetReference[k] = unpack.real();
-      unpack.get(job.start.data(), stateSize * sizeof(double));
-      unpack.get(job.control.data(), controlSize * sizeof(double));
-      if (records > kMaxRecords) {
-        code = 1;
-        break;
-      }
-      std::vector<std::uint64_t> steps(records);
-      if (readAll(fd, steps.data(), records * sizeof(std::uint64_t)) != Io::Ok) {
-        code = 1;
-        break;
-      }
-      job.recordAfter.assign(steps.begin(), steps.end());
-
-      const physics::PropagationCounters before = propagator.counters();
-      const ParticleResult result = runner_.run(job);
-      const physics::PropagationCounters after = propagator.counters();
-
-      Packer pack(buffer_);
-      pack.put(index);
-      pack.put(std::uint64_t{result.valid ? 1u : 0u});
-      pack.put(std::uint64_t{result.goalFrom});
-      pack.put(std::uint64_t{after.propagations - before.propagations});
-      pack.put(std::uint64_t{after.physicsSteps - before.physicsSteps});
-      pack.put(std::uint64_t{result.recorded.size()});
-      pack.put(result.end.data(), stateSize * sizeof(double));
-      for (const std::vector<double>& state : result.recorded)
-        pack.put(state.data(), stateSize * sizeof(double));
-      if (writeAll(fd, buffer_.data(), buffer_.size()) != Io::Ok) {
+      const bool served = kind == static_cast<std::uint64_t>(JobKind::Particle) ? serveParticle(fd)
+                          : kind == static_cast<std::uint64_t>(JobKind::Execution)
+                              ? serveExecution(fd)
+                              : false;
+      if (!served) {
         code = 1;
         break;
       }
@@ -234,8 +206,102 @@ void ParticleWorkers::serve(int fd) {
   ::_exit(code);
 }
 
+namespace {
+
+/// A result message's fixed part and end state (both kinds of job end with one).
+void packResult(Packer& pack, std::uint64_t index, bool valid, unsigned goalFrom,
+                const physics::PropagationCounters& work, std::size_t records,
+                const std::vector<double>& end) {
+  pack.put(index);
+  pack.put(std::uint64_t{valid ? 1u : 0u});
+  pack.put(std::uint64_t{goalFrom});
+  pack.put(std::uint64_t{work.propagations});
+  pack.put(std::uint64_t{work.physicsSteps});
+  pack.put(std::uint64_t{records});
+  pack.put(end.data(), end.size() * sizeof(double));
+}
+
+physics::PropagationCounters workSince(const physics::PhysicsPropagator& propagator,
+                                       const physics::PropagationCounters& before) {
+  const physics::PropagationCounters after = propagator.counters();
+  physics::PropagationCounters work;
+  work.propagations = after.propagations - before.propagations;
+  work.physicsSteps = after.physicsSteps - before.physicsSteps;
+  return work;
+}
+
+}  // namespace
+
+bool ParticleWorkers::serveParticle(int fd) {
+  const std::size_t stateSize = runner_.stateSize();
+  const std::size_t controlSize = runner_.controlSize();
+  ParticleJob job;
+  job.start.resize(stateSize);
+  job.control.resize(controlSize);
+  buffer_.resize(jobSize(runner_));
+  if (readAll(fd, buffer_.data(), buffer_.size()) != Io::Ok) return false;
+  Unpacker unpack(buffer_);
+  const std::uint64_t index = unpack.u64();
+  job.steps = static_cast<unsigned>(unpack.u64());
+  job.goalStop = static_cast<GoalStop>(unpack.u64());
+  const std::uint64_t records = unpack.u64();
+  job.contact.friction = unpack.real();
+  job.contact.erp = unpack.real();
+  job.contact.cfm = unpack.real();
+  for (int k = 0; k < 3; ++k) job.targetReference[k] = unpack.real();
+  unpack.get(job.start.data(), stateSize * sizeof(double));
+  unpack.get(job.control.data(), controlSize * sizeof(double));
+  if (records > kMaxRecords) return false;
+  std::vector<std::uint64_t> steps(records);
+  if (readAll(fd, steps.data(), records * sizeof(std::uint64_t)) != Io::Ok) return false;
+  job.recordAfter.assign(steps.begin(), steps.end());
+
+  const physics::PhysicsPropagator& propagator = runner_.context().propagator();
+  const physics::PropagationCounters before = propagator.counters();
+  const ParticleResult result = runner_.run(job);
+  Packer pack(buffer_);
+  packResult(pack, index, result.valid, result.goalFrom, workSince(propagator, before),
+             result.recorded.size(), result.end);
+  for (const std::vector<double>& state : result.recorded)
+    pack.put(state.data(), stateSize * sizeof(double));
+  return writeAll(fd, buffer_.data(), buffer_.size()) == Io::Ok;
+}
+
+bool ParticleWorkers::serveExecution(int fd) {
+  buffer_.resize(kExecutionHeader);
+  if (readAll(fd, buffer_.data(), buffer_.size()) != Io::Ok) return false;
+  Unpacker header(buffer_);
+  const std::uint64_t index = header.u64();
+  const std::uint64_t seed = header.u64();
+  const std::uint64_t count = header.u64();
+  if (count > kMaxRecords) return false;
+  std::vector<physics::ControlStep> controls(count);
+  for (physics::ControlStep& control : controls) {
+    buffer_.resize(kControlHeader);
+    if (readAll(fd, buffer_.data(), buffer_.size()) != Io::Ok) return false;
+    Unpacker unpack(buffer_);
+    control.steps = static_cast<unsigned>(unpack.u64());
+    control.action = static_cast<physics::GripperAction>(unpack.u64());
+    control.object = static_cast<int>(unpack.u64()) - 1;
+    const std::uint64_t values = unpack.u64();
+    if (values > kMaxControlValues) return false;
+    control.values.resize(values);
+    if (readAll(fd, control.values.data(), values * sizeof(double)) != Io::Ok) return false;
+  }
+
+  physics::PlanningContext& context = runner_.context();
+  const physics::PropagationCounters before = context.propagator().counters();
+  std::mt19937_64 rng(seed);
+  const physics::ExecutionResult run = physics::execute(context, controls, rng, true);
+  Packer pack(buffer_);
+  packResult(pack, index, run.reachedGoal, 0, workSince(context.propagator(), before), 0,
+             run.finalState);
+  return writeAll(fd, buffer_.data(), buffer_.size()) == Io::Ok;
+}
+
 void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob& job) {
   Packer pack(buffer_);
+  pack.put(static_cast<std::uint64_t>(JobKind::Particle));
   pack.put(std::uint64_t{index});
   pack.put(std::uint64_t{job.steps});
   pack.put(static_cast<std::uint64_t>(job.goalStop));
@@ -247,12 +313,34 @@ void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob&
   pack.put(job.start.data(), runner_.stateSize() * sizeof(double));
   pack.put(job.control.data(), runner_.controlSize() * sizeof(double));
   for (unsigned step : job.recordAfter) pack.put(std::uint64_t{step});
+  transmit(worker);
+}
+
+void ParticleWorkers::sendExecution(Worker& worker, std::size_t index,
+                                    const std::vector<physics::ControlStep>& controls,
+                                    std::uint64_t seed) {
+  Packer pack(buffer_);
+  pack.put(static_cast<std::uint64_t>(JobKind::Execution));
+  pack.put(std::uint64_t{index});
+  pack.put(seed);
+  pack.put(std::uint64_t{controls.size()});
+  for (const physics::ControlStep& control : controls) {
+    pack.put(std::uint64_t{control.steps});
+    pack.put(static_cast<std::uint64_t>(control.action));
+    pack.put(static_cast<std::uint64_t>(control.object + 1));
+    pack.put(std::uint64_t{control.values.size()});
+    pack.put(control.values.data(), control.values.size() * sizeof(double));
+  }
+  transmit(worker);
+}
+
+void ParticleWorkers::transmit(Worker& worker) {
   const Io out = writeAll(worker.fd, buffer_.data(), buffer_.size());
   if (out != Io::Ok) fail(worker, out == Io::Closed ? "closed its socket" : "cannot be written to");
   ++worker.inFlight;
 }
 
-void ParticleWorkers::receive(Worker& worker, const std::vector<ParticleJob>& jobs,
+void ParticleWorkers::receive(Worker& worker, const Batch& batch,
                               std::vector<ParticleResult>& results) {
   buffer_.resize(resultSize(runner_));
   const Io in = readAll(worker.fd, buffer_.data(), buffer_.size());
@@ -267,7 +355,7 @@ void ParticleWorkers::receive(Worker& worker, const std::vector<ParticleJob>& jo
   work.propagations = unpack.u64();
   work.physicsSteps = unpack.u64();
   const std::uint64_t records = unpack.u64();
-  if (records > jobs[index].recordAfter.size())
+  if (records > batch.maxRecords(index))
     fail(worker, "announced more recorded states than its job asked for");
   result.end.resize(runner_.stateSize());
   unpack.get(result.end.data(), runner_.stateSize() * sizeof(double));
@@ -308,8 +396,37 @@ void ParticleWorkers::fail(Worker& worker, const char* what) {
 }
 
 std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>& jobs) {
+  Batch batch;
+  batch.size = jobs.size();
+  batch.send = [&](Worker& worker, std::size_t i) { send(worker, i, jobs[i]); };
+  batch.runHere = [&](std::size_t i) { return runner_.run(jobs[i]); };
+  batch.maxRecords = [&](std::size_t i) { return jobs[i].recordAfter.size(); };
+  return dispatch(batch);
+}
+
+std::vector<bool> ParticleWorkers::execute(const std::vector<physics::ControlStep>& controls,
+                                           const std::vector<std::uint64_t>& seeds) {
+  Batch batch;
+  batch.size = seeds.size();
+  batch.send = [&](Worker& worker, std::size_t i) { sendExecution(worker, i, controls, seeds[i]); };
+  batch.runHere = [&](std::size_t i) {
+    std::mt19937_64 rng(seeds[i]);
+    const physics::ExecutionResult run = physics::execute(runner_.context(), controls, rng, true);
+    ParticleResult result;
+    result.valid = run.reachedGoal;
+    result.end = run.finalState;
+    return result;
+  };
+  batch.maxRecords = [](std::size_t) { return std::size_t{0}; };
+  const std::vector<ParticleResult> results = dispatch(batch);
+  std::vector<bool> reached(results.size());
+  for (std::size_t i = 0; i < results.size(); ++i) reached[i] = results[i].valid;
+  return reached;
+}
+
+std::vector<ParticleResult> ParticleWorkers::dispatch(const Batch& batch) {
   if (broken_) throw std::runtime_error("particle workers: unusable since a worker died");
-  std::vector<ParticleResult> results(jobs.size());
+  std::vector<ParticleResult> results(batch.size);
   for (Worker& w : workers_) w.inFlight = 0;
   std::size_t next = 0;
   std::size_t done = 0;
@@ -318,16 +435,16 @@ std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>&
   const auto handOut = [&] {
     for (unsigned round = 0; round < kJobsPerWorker; ++round)
       for (Worker& w : workers_)
-        if (w.inFlight <= round && jobs.size() - next > 1) {
-          send(w, next, jobs[next]);
+        if (w.inFlight <= round && batch.size - next > 1) {
+          batch.send(w, next);
           ++next;
         }
   };
   std::vector<pollfd> fds(workers_.size());
   handOut();
-  while (done < jobs.size()) {
-    if (next < jobs.size()) {
-      results[next] = runner_.run(jobs[next]);
+  while (done < batch.size) {
+    if (next < batch.size) {
+      results[next] = batch.runHere(next);
       ++next;
       ++done;
     }
@@ -340,12 +457,12 @@ std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>&
     }
     if (busy) {
       // Wait only when this process has no job left to run itself.
-      const int ready = ::poll(fds.data(), fds.size(), next < jobs.size() ? 0 : -1);
+      const int ready = ::poll(fds.data(), fds.size(), next < batch.size ? 0 : -1);
       if (ready < 0 && errno != EINTR)
         throw std::system_error(errno, std::generic_category(), "particle workers: poll");
       for (std::size_t i = 0; ready > 0 && i < workers_.size(); ++i)
         if (fds[i].fd >= 0 && (fds[i].revents & (POLLIN | POLLHUP | POLLERR))) {
-          receive(workers_[i], jobs, results);
+          receive(workers_[i], batch, results);
           ++done;
         }
     }

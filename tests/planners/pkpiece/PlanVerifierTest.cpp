@@ -1,5 +1,6 @@
 // PlanVerifier on a real problem: its runs are physics::execute's sampled executions, one
-// random stream each, never repeated, and it stops once the threshold is out of reach.
+// random stream each, never repeated, and it stops once the threshold is out of reach; with
+// worker processes it counts the same runs.
 
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
@@ -28,6 +29,7 @@ struct Scene {
       {{"particles", "4"}, {"candidates", "3"}, {"verify_runs", "0"}, {"time_limit", "300"}},
       seedRandomness(2));
   physics::PlanningContext context{problem, 0, request.propagation()};
+  MotionEvaluator evaluator{context, 0.0};
 };
 
 /// Successes of the executions kSeedBase's streams first..first+runs-1 give, as validate runs them.
@@ -46,7 +48,7 @@ TEST(PlanVerifierTest, RunsSampledExecutionsOnFreshStreamsEachTime) {
   Scene scene;
   const PlanOutcome plan = solve(scene.context, scene.request);
   ASSERT_TRUE(plan.solved);
-  PlanVerifier verifier(scene.context, kSeedBase);
+  PlanVerifier verifier(scene.evaluator, kSeedBase);
   const VerificationResult first = verifier.verify(plan.controls, 12, 0.0);
   const VerificationResult second = verifier.verify(plan.controls, 12, 0.0);
   EXPECT_EQ(first.runs, 12u);
@@ -63,7 +65,7 @@ TEST(PlanVerifierTest, StopsAtTheFailureThatPutsTheThresholdOutOfReach) {
   std::vector<physics::ControlStep> idle(1);
   idle[0].values.assign(scene.context.propagator().mapping().size(), 0.0);
   idle[0].steps = 2;
-  PlanVerifier verifier(scene.context, kSeedBase);
+  PlanVerifier verifier(scene.evaluator, kSeedBase);
   // 10 runs at 0.75: the third failure leaves at most 7 successes.
   const VerificationResult strict = verifier.verify(idle, 10, 0.75);
   EXPECT_FALSE(strict.passed);
@@ -74,6 +76,36 @@ TEST(PlanVerifierTest, StopsAtTheFailureThatPutsTheThresholdOutOfReach) {
   const VerificationResult all = verifier.verify(idle, 10, 0.0);
   EXPECT_EQ(all.runs, 10u);
   EXPECT_TRUE(all.passed);
+}
+
+/// Runs spread over worker processes are counted as one after another: the same verdict, the
+/// same count at an early stop, and the next verification draws the same streams.
+TEST(PlanVerifierTest, WorkerProcessesCountTheSameRuns) {
+  Scene scene;
+  const PlanOutcome plan = solve(scene.context, scene.request);
+  ASSERT_TRUE(plan.solved);
+  std::vector<VerificationResult> byThreads[2];
+  for (unsigned threads : {1u, 2u}) {
+    scene.evaluator.useWorkers(threads);
+    PlanVerifier verifier(scene.evaluator, kSeedBase);
+    auto& results = byThreads[threads - 1];
+    results.push_back(verifier.verify(plan.controls, 11, 0.0));
+    results.push_back(verifier.verify(plan.controls, 20, 0.9));  // stops early, mid-batch
+    results.push_back(verifier.verify(plan.controls, 7, 0.0));
+  }
+  ASSERT_EQ(scene.evaluator.threads(), 2u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(byThreads[0][i].runs, byThreads[1][i].runs) << "verification " << i;
+    EXPECT_EQ(byThreads[0][i].successes, byThreads[1][i].successes) << "verification " << i;
+    EXPECT_EQ(byThreads[0][i].passed, byThreads[1][i].passed) << "verification " << i;
+  }
+  EXPECT_EQ(byThreads[0][0].successes, successesOfStreams(scene.context, plan.controls, 0, 11));
+  // The plan succeeds about a fifth of the time: 0.9 stops after a few runs, not all 20.
+  EXPECT_LT(byThreads[0][1].runs, 20u);
+  EXPECT_FALSE(byThreads[0][1].passed);
+  const unsigned counted = 11 + byThreads[0][1].runs;
+  EXPECT_EQ(byThreads[1][2].successes,
+            successesOfStreams(scene.context, plan.controls, counted, 7));
 }
 
 }  // namespace

@@ -3,8 +3,11 @@
 #include <sys/types.h>
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <vector>
 
+#include "kautham/physics/Replay.h"
 #include "kautham/planners/pkpiece/ParticleRunner.h"
 
 namespace kautham::planners {
@@ -20,8 +23,10 @@ namespace kautham::planners {
 /// a worker's result is bit-identical to running the job in this process.
 ///
 /// run() spreads the jobs over the workers and this process and returns the results in job
-/// order. A worker that dies is an error (std::runtime_error naming it), never a hang; after
-/// that the pool refuses work. The destructor closes the sockets and reaps every worker.
+/// order; execute() does the same for whole-plan executions (PlanVerifier), each one
+/// physics::execute on the worker's copy of the context with its own random stream. A worker that
+/// dies is an error (std::runtime_error naming it), never a hang; after that the pool refuses work.
+/// The destructor closes the sockets and reaps every worker.
 class ParticleWorkers {
  public:
   /// Forks `workers` processes (at least one); `runner` runs this process's share of the jobs.
@@ -33,6 +38,11 @@ class ParticleWorkers {
   /// Runs every job, in workers and inline; results in the order of `jobs`. The physics work
   /// the workers did is added to the context's propagator counters, so statistics count it.
   std::vector<ParticleResult> run(const std::vector<ParticleJob>& jobs);
+  /// Executes the whole plan `controls` once per seed, in sampled worlds (physics::execute with
+  /// a std::mt19937_64 seeded by it), in workers and inline; whether each run reached the goal,
+  /// in the order of `seeds`. A run gives the same answer in any process.
+  std::vector<bool> execute(const std::vector<physics::ControlStep>& controls,
+                            const std::vector<std::uint64_t>& seeds);
 
   std::size_t size() const { return workers_.size(); }
   /// The workers' process ids (for tests).
@@ -46,10 +56,24 @@ class ParticleWorkers {
     bool reaped = false;
   };
 
+  /// How one batch of work goes out: job i to a worker, or run here; a result's most recorded
+  /// states.
+  struct Batch {
+    std::size_t size = 0;
+    std::function<void(Worker&, std::size_t)> send;
+    std::function<ParticleResult(std::size_t)> runHere;
+    std::function<std::size_t(std::size_t)> maxRecords;
+  };
+
   [[noreturn]] void serve(int fd);
+  bool serveParticle(int fd);
+  bool serveExecution(int fd);
+  std::vector<ParticleResult> dispatch(const Batch& batch);
   void send(Worker& worker, std::size_t index, const ParticleJob& job);
-  void receive(Worker& worker, const std::vector<ParticleJob>& jobs,
-               std::vector<ParticleResult>& results);
+  void sendExecution(Worker& worker, std::size_t index,
+                     const std::vector<physics::ControlStep>& controls, std::uint64_t seed);
+  void transmit(Worker& worker);
+  void receive(Worker& worker, const Batch& batch, std::vector<ParticleResult>& results);
   [[noreturn]] void fail(Worker& worker, const char* what);
   void shutdown() noexcept;
 

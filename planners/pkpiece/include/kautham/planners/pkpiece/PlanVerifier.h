@@ -3,8 +3,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/Replay.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
 
 namespace kautham::planners {
 
@@ -22,12 +22,14 @@ struct VerificationResult {
 /// parent's particles ended; an execution carries everything that happened before, so its
 /// success rate is the estimate the plan is judged by.
 ///
-/// Runs go in the calling process, one after another, so the result does not depend on how
-/// many processes the particles use. Each verification draws fresh random streams (a counter
-/// over `seedBase`), never those of `kautham validate --seed N` for a small N.
+/// Runs go in batches over the evaluator's processes (MotionEvaluator::runExecutions), and are
+/// counted in order, as if one after another: the result, and the streams the next
+/// verification draws, do not depend on how many processes run them. Each verification draws
+/// fresh random streams (a counter over `seedBase`), never those of `kautham validate --seed N`
+/// for a small N.
 class PlanVerifier {
  public:
-  PlanVerifier(physics::PlanningContext& context, std::uint64_t seedBase);
+  PlanVerifier(MotionEvaluator& evaluator, std::uint64_t seedBase);
 
   /// Runs up to `runs` executions of `controls`; stops as soon as too many have failed for
   /// the rate over all `runs` to reach `threshold` (a rejected plan costs less).
@@ -35,9 +37,9 @@ class PlanVerifier {
                             double threshold);
 
  private:
-  physics::PlanningContext& context_;
+  MotionEvaluator& evaluator_;
   std::uint64_t seedBase_;
-  std::uint64_t nextRun_ = 0;  ///< runs drawn so far: every run has its own stream
+  std::uint64_t nextRun_ = 0;  ///< runs counted so far: every counted run has its own stream
 };
 
 }  // namespace kautham::planners
