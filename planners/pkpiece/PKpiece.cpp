@@ -65,6 +65,7 @@ struct PKpiece::Candidate {
   std::uint64_t streamSeed = 0;  ///< its particles' random streams
   double fromPathBelief = 1.0;   ///< the path belief of the motion it grows from
   bool judged = false;           ///< verdict holds its particles' (possibly pruned) say
+  bool steered = false;          ///< aimed by GoalSteering (else random)
   ParticleVerdict verdict;
 };
 
@@ -104,6 +105,14 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(verifications_); });
   addPlannerProgressProperty("verification_rejections INTEGER",
                              [this] { return std::to_string(verificationRejections_); });
+  // Goal-biased expansions: candidates aimed by the goal steering, those valid from their first
+  // step, and those kept (they compete with the random ones by belief).
+  addPlannerProgressProperty("steered_candidates INTEGER",
+                             [this] { return std::to_string(steeredCandidates_); });
+  addPlannerProgressProperty("steered_valid INTEGER",
+                             [this] { return std::to_string(steeredValid_); });
+  addPlannerProgressProperty("steered_kept INTEGER",
+                             [this] { return std::to_string(steeredKept_); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -139,6 +148,9 @@ void PKpiece::clear() {
   beliefMeanSum_ = 0.0;
   candidateCount_ = 0;
   goalCandidates_ = 0;
+  steeredCandidates_ = 0;
+  steeredValid_ = 0;
+  steeredKept_ = 0;
   bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();
   solutionConfidence_.reset();
@@ -252,8 +264,13 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
         rng_.uniformInt(static_cast<int>(minSteps), static_cast<int>(maxSteps)));
   }
   // A goal-biased expansion tries one candidate aimed at the goal (GoalSteering).
+  bool steered = false;
   if (steerNext_ && settings_.goalSteering)
-    if (std::optional<NominalMotion> steered = steering_.towardsGoal(start)) motions[0] = *steered;
+    if (std::optional<NominalMotion> aimed = steering_.towardsGoal(start)) {
+      motions[0] = *aimed;
+      steered = true;
+      ++steeredCandidates_;
+    }
   std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, withParticles());
   candidateCount_ += motions.size();
   std::vector<Candidate> valid;
@@ -264,6 +281,8 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
     candidate.run = std::move(runs[c]);
     candidate.streamSeed = nextStreamSeed();
     candidate.fromPathBelief = from.pathBelief;
+    candidate.steered = steered && c == 0;
+    steeredValid_ += candidate.steered ? 1 : 0;
     candidate.pieceEnds = pieceEnds(candidate.run);
     candidate.recordAfter = candidate.pieceEnds;
     for (unsigned s = candidate.run.goalFrom; s > 0 && s <= candidate.run.steps; ++s)
@@ -393,6 +412,7 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
   std::vector<Candidate> valid = sampleCandidates(*from);
   Candidate* chosen = chooseCandidate(valid, *from);
   if (!chosen) return nullptr;
+  steeredKept_ += chosen->steered ? 1 : 0;
   if (settings_.confirmBelief && withParticles()) confirm(*chosen, *from);
   const double* start = physics::WorldStateSpace::values(from->state);
   const auto endPoses = from->poses->afterMotion(

@@ -127,6 +127,21 @@ TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBe
     EXPECT_NE(run.outcome.controls[i].values, run.outcome.controls[i - 1].values) << i;
 }
 
+TEST(PKpieceTest, SteeredCandidatesAreCountedAndWithoutUncertaintyAllValidOnesKept) {
+  // Without uncertainty every valid candidate's belief is 1 (unless it moves an object too far),
+  // and ties go to the first: the steered one. With no random keep, each valid steered
+  // candidate is kept.
+  const PlanRun nominal = plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1,
+                               {{"uncertainty", "0"}, {"random_candidate", "0"}});
+  ASSERT_TRUE(nominal.outcome.solved);
+  const long aimed = std::stol(nominal.property("steered_candidates"));
+  const long valid = std::stol(nominal.property("steered_valid"));
+  const long kept = std::stol(nominal.property("steered_kept"));
+  EXPECT_GT(aimed, 0);
+  EXPECT_LE(valid, aimed);
+  EXPECT_EQ(kept, valid);
+}
+
 TEST(PKpieceTest, APlanEndsTheSearchOnlyIfEnoughOfItsExecutionsSucceed) {
   // verify_runs: the plan is executed in sampled worlds before it may end the search; its
   // estimated success is then a fraction of as many fresh executions. This scene's plans
