@@ -4,7 +4,6 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
-#include "kautham/physics/Execution.h"
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::planners {
@@ -32,10 +31,7 @@ std::vector<bool> MotionEvaluator::runExecutions(const std::vector<physics::Cont
                                                  const std::vector<std::uint64_t>& seeds) {
   if (workers_) return workers_->execute(controls, seeds);
   std::vector<bool> reached;
-  for (std::uint64_t seed : seeds) {
-    std::mt19937_64 rng(seed);
-    reached.push_back(physics::execute(context_, controls, rng, true).reachedGoal);
-  }
+  for (std::uint64_t seed : seeds) reached.push_back(runner_.execute(controls, seed).reachedGoal);
   return reached;
 }
 

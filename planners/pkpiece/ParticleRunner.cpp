@@ -1,6 +1,7 @@
 #include "kautham/planners/pkpiece/ParticleRunner.h"
 
 #include <algorithm>
+#include <random>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
@@ -60,6 +61,12 @@ ParticleResult ParticleRunner::run(const ParticleJob& job) {
     if (stop) break;
   }
   return result;
+}
+
+physics::ExecutionResult ParticleRunner::execute(const std::vector<physics::ControlStep>& controls,
+                                                 std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  return physics::execute(context_, controls, rng, true);
 }
 
 }  // namespace kautham::planners

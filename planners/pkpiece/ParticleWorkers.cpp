@@ -15,8 +15,6 @@
 #include <system_error>
 #include <thread>
 
-#include "kautham/physics/Execution.h"
-
 namespace kautham::planners {
 
 namespace {
@@ -289,13 +287,11 @@ bool ParticleWorkers::serveExecution(int fd) {
     if (readAll(fd, control.values.data(), values * sizeof(double)) != Io::Ok) return false;
   }
 
-  physics::PlanningContext& context = runner_.context();
-  const physics::PropagationCounters before = context.propagator().counters();
-  std::mt19937_64 rng(seed);
-  const physics::ExecutionResult run = physics::execute(context, controls, rng, true);
+  const physics::PhysicsPropagator& propagator = runner_.context().propagator();
+  const physics::PropagationCounters before = propagator.counters();
+  const physics::ExecutionResult run = runner_.execute(controls, seed);
   Packer pack(buffer_);
-  packResult(pack, index, run.reachedGoal, 0, workSince(context.propagator(), before), 0,
-             run.finalState);
+  packResult(pack, index, run.reachedGoal, 0, workSince(propagator, before), 0, run.finalState);
   return writeAll(fd, buffer_.data(), buffer_.size()) == Io::Ok;
 }
 
@@ -410,8 +406,7 @@ std::vector<bool> ParticleWorkers::execute(const std::vector<physics::ControlSte
   batch.size = seeds.size();
   batch.send = [&](Worker& worker, std::size_t i) { sendExecution(worker, i, controls, seeds[i]); };
   batch.runHere = [&](std::size_t i) {
-    std::mt19937_64 rng(seeds[i]);
-    const physics::ExecutionResult run = physics::execute(runner_.context(), controls, rng, true);
+    const physics::ExecutionResult run = runner_.execute(controls, seeds[i]);
     ParticleResult result;
     result.valid = run.reachedGoal;
     result.end = run.finalState;

@@ -134,10 +134,10 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
   std::uint64_t candidateCount_ = 0;
   std::uint64_t goalCandidates_ = 0;     ///< candidates whose nominal run entered the goal
+  double bestGoalConfidence_ = 0.0;      ///< the best solutionConfidence among them
   std::uint64_t steeredCandidates_ = 0;  ///< candidates aimed by GoalSteering
   std::uint64_t steeredValid_ = 0;       ///< of those, the ones valid from their first step
   std::uint64_t steeredKept_ = 0;        ///< of those, the ones chosen
-  double bestGoalConfidence_ = 0.0;      ///< the best solutionConfidence among them
   std::vector<double> solutionBeliefs_;
   double solutionPathBelief_ = 1.0;
   std::optional<double> solutionConfidence_;  ///< the exact solution's estimated success

@@ -1,11 +1,14 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include <ompl/base/State.h>
 #include <ompl/control/Control.h>
 #include <Eigen/Core>
 
+#include "kautham/physics/Execution.h"
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/pkpiece/ParticleJob.h"
 
@@ -28,6 +31,11 @@ class ParticleRunner {
   /// Sets the job's contact parameters (they stay set: the caller restores its own) and steps
   /// the control from the start state until the first invalid state or `steps` steps.
   ParticleResult run(const ParticleJob& job);
+  /// Executes the whole plan `controls` once in a world sampled with the stream `seed`, as
+  /// `kautham validate` does (physics::execute with a std::mt19937_64 seeded by it): the same
+  /// run in any process with a copy of the context.
+  physics::ExecutionResult execute(const std::vector<physics::ControlStep>& controls,
+                                   std::uint64_t seed);
 
   physics::PlanningContext& context() { return context_; }
   std::size_t stateSize() const { return stateSize_; }
