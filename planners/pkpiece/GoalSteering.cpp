@@ -30,11 +30,13 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 }  // namespace
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
-                           bool clearing, double pushPitch)
+                           bool clearing, double pushPitch, bool kinematic)
     : context_(context),
       evaluator_(evaluator),
       clearing_(context, pushPitch),
-      clearingOn_(clearing) {}
+      clearingOn_(clearing) {
+  if (kinematic) kinematic_.emplace(context);
+}
 
 double GoalSteering::rankDistance(const double* state) const {
   if (clearingOn_)
@@ -57,9 +59,7 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   return steer(start, context_.goal().position(), context_.goal().nominalGoalPose().linear(), 0.0);
 }
 
-std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eigen::Vector3d& target,
-                                                 const Eigen::Matrix3d& orientation,
-                                                 double maxSpeed) const {
+std::optional<Eigen::MatrixXd> GoalSteering::probedJacobian(const double* start) const {
   const auto& si = context_.spaceInformation();
   const auto dimension = static_cast<Eigen::Index>(si->getControlSpace()->getDimension());
   std::vector<NominalMotion> probes(static_cast<std::size_t>(dimension) + 1);
@@ -74,18 +74,39 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   const physics::WorldLayout& layout = context_.layout();
   const Eigen::Vector3d drift = layout.goalLinkPosition(runs[0].end.data());
   const Eigen::Matrix3d driftTurn = layout.goalLinkOrientation(runs[0].end.data());
-  // Per step and unit of control: the link's displacement, and its turn in metres
-  // (kMetresPerRadian), with what the goal does not care about projected out.
-  const Eigen::Matrix3d startTurn = layout.goalLinkOrientation(start);
-  const Eigen::Matrix3d turnRows = turnProjection(startTurn);
   Eigen::MatrixXd jacobian(6, dimension);
   for (Eigen::Index i = 0; i < dimension; ++i) {
     const double* probed = runs[static_cast<std::size_t>(i) + 1].end.data();
     jacobian.col(i).head<3>() = (layout.goalLinkPosition(probed) - drift) / kProbe;
     jacobian.col(i).tail<3>() =
-        kMetresPerRadian * turnRows *
         rotationVector(layout.goalLinkOrientation(probed) * driftTurn.transpose()) / kProbe;
   }
+  return jacobian;
+}
+
+std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eigen::Vector3d& target,
+                                                 const Eigen::Matrix3d& orientation,
+                                                 double maxSpeed) const {
+  const auto& si = context_.spaceInformation();
+  const physics::WorldLayout& layout = context_.layout();
+  if (kinematic_) {
+    Eigen::Vector3d aim = target;
+    const Eigen::Vector3d from = layout.goalLinkPosition(start);
+    if (maxSpeed > 0.0 && (target - from).norm() > kMaxStride)
+      aim = from + kMaxStride * (target - from).normalized();
+    if (std::optional<NominalMotion> motion =
+            kinematic_->towards(start, aim, orientation, maxSpeed))
+      return motion;
+  }
+  const std::optional<Eigen::MatrixXd> perControl = probedJacobian(start);
+  if (!perControl) return std::nullopt;
+  // Per step and unit of control: the link's displacement, and its turn in metres
+  // (kMetresPerRadian), with what the goal does not care about projected out.
+  const Eigen::Matrix3d startTurn = layout.goalLinkOrientation(start);
+  const Eigen::Matrix3d turnRows = turnProjection(startTurn);
+  Eigen::MatrixXd jacobian(6, perControl->cols());
+  jacobian.topRows<3>() = perControl->topRows<3>();
+  jacobian.bottomRows<3>() = kMetresPerRadian * turnRows * perControl->bottomRows<3>();
   Eigen::Matrix<double, 6, 1> toGo;
   toGo.head<3>() = target - layout.goalLinkPosition(start);
   toGo.tail<3>() = kMetresPerRadian * turnRows * turnTo(startTurn, orientation);

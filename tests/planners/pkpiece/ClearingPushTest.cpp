@@ -81,7 +81,7 @@ TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
 TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true, kPitch);
+  const GoalSteering steering(scene.context, evaluator, true, kPitch, false);
   const std::vector<double>& start = scene.context.startState();
   const double blocked = steering.rankDistance(start.data());
   EXPECT_GT(blocked, GoalSteering::kBlockedRank + 0.3);
@@ -91,7 +91,7 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
   EXPECT_NEAR(clear, scene.context.goal().searchDistance(cleared.data()), 1e-12);
   EXPECT_LT(clear, blocked);
   // Without the clearing push the rank is the search distance, blocked or not.
-  const GoalSteering plain(scene.context, evaluator, false, kPitch);
+  const GoalSteering plain(scene.context, evaluator, false, kPitch, false);
   EXPECT_NEAR(plain.rankDistance(start.data()), scene.context.goal().searchDistance(start.data()),
               1e-12);
 }
@@ -99,7 +99,7 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
 TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true, kPitch);
+  const GoalSteering steering(scene.context, evaluator, true, kPitch, false);
   const ClearingPush clearing(scene.context, kPitch);
   const std::vector<double>& start = scene.context.startState();
   const Eigen::Vector3d waypoint = clearing.next(start.data())->waypoint;

@@ -4,6 +4,7 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/pkpiece/ClearingPush.h"
+#include "kautham/planners/pkpiece/JointSpaceSteering.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
 
 namespace kautham::planners {
@@ -25,9 +26,11 @@ class GoalSteering {
   /// Blocked states rank behind every clear one by at least this much (m).
   static constexpr double kBlockedRank = 0.5;
 
-  /// `pushPitch` (rad): how far the clearing push points the gripper down.
+  /// `pushPitch` (rad): how far the clearing push points the gripper down. `kinematic`: aim by
+  /// inverse kinematics and a line in joint space (JointSpaceSteering), with the Jacobian
+  /// only where inverse kinematics finds no pose.
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
-               double pushPitch);
+               double pushPitch, bool kinematic);
 
   /// The steering motion from `start`; none when a probe step is invalid, the goal is a
   /// configuration, or the goal's free space is blocked and there is no clearing push.
@@ -43,6 +46,9 @@ class GoalSteering {
   /// faster than that and at most a stride far.
   std::optional<NominalMotion> steer(const double* start, const Eigen::Vector3d& target,
                                      const Eigen::Matrix3d& orientation, double maxSpeed) const;
+  /// The link's displacement and turn (world rotation vector) per step and unit of each control,
+  /// from one physics step per control (and one without); none when a probe step is invalid.
+  std::optional<Eigen::MatrixXd> probedJacobian(const double* start) const;
   /// What of a turn (world rotation vector) the goal cares about: all of it with a level
   /// axis, none without an approach, the part that tilts the approach axis otherwise.
   Eigen::Matrix3d turnProjection(const Eigen::Matrix3d& turn) const;
@@ -54,6 +60,7 @@ class GoalSteering {
   MotionEvaluator& evaluator_;
   ClearingPush clearing_;
   bool clearingOn_;
+  std::optional<JointSpaceSteering> kinematic_;
 };
 
 }  // namespace kautham::planners

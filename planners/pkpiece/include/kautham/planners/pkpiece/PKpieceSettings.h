@@ -40,6 +40,9 @@ struct PKpieceSettings {
   bool confirmBelief;
   /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
   bool goalSteering;
+  /// The goal steering aims by inverse kinematics and a line in joint space
+  /// (JointSpaceSteering), not by a Jacobian probed with one physics step per control.
+  bool kinematicSteering;
   /// While an object fills the goal's free space, the goal bias grows the motions furthest
   /// along a push that clears it, and steers that push (ClearingPush).
   bool clearingPush;
@@ -145,6 +148,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(1)
                    .describe("in a goal-biased expansion, aim one candidate at the goal (a "
                              "numerical Jacobian from probe steps)"))
+          .add(&S::kinematicSteering,
+               Parameter::flag("kinematic_steering")
+                   .byDefault(1)
+                   .describe("the goal steering aims by inverse kinematics and a straight line "
+                             "in joint space (0: by a Jacobian from one physics step per "
+                             "control)"))
           .add(&S::clearingPush,
                Parameter::flag("clearing_push")
                    .byDefault(1)
