@@ -9,14 +9,15 @@
 
 namespace kautham::planners {
 
-/// A control that drives the goal link straight at the goal region's centre, for p-KPIECE's
+/// A control that drives the goal link to the goal region's centre, for p-KPIECE's
 /// goal-biased expansions (not in the paper: uniform random joint velocities enter a 3 cm
 /// region with the right approach about once in a thousand candidates).
 ///
-/// Estimated from the physics itself, so it needs no kinematic model: one propagation step
-/// with no control and one per control dimension give the link's displacement per unit of
-/// control (a numerical Jacobian); damped least squares turns the displacement still to go,
-/// spread over the fewest steps the control limits allow, into a control.
+/// Aimed by inverse kinematics and a straight line in joint space (JointSpaceSteering), or
+/// (`kinematic` off, and where inverse kinematics finds no pose) by a numerical Jacobian from
+/// the physics itself: one propagation step with no control and one per control dimension give
+/// the link's displacement per unit of control; damped least squares turns the displacement
+/// still to go, spread over the fewest steps the control limits allow, into a control.
 ///
 /// While an object fills the goal's free space (WorkspaceGoal::freeSpaceBlocker) the straight
 /// move would push that object on to the target: it steers the ClearingPush instead (or,
@@ -32,8 +33,8 @@ class GoalSteering {
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
                double pushPitch, bool kinematic);
 
-  /// The steering motion from `start`; none when a probe step is invalid, the goal is a
-  /// configuration, or the goal's free space is blocked and there is no clearing push.
+  /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
+  /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.
   std::optional<NominalMotion> towardsGoal(const double* start) const;
   /// How far `state` is from the goal, for choosing what the goal bias grows: the search
   /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus

@@ -146,8 +146,8 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
           .add(&S::goalSteering,
                Parameter::flag("goal_steering")
                    .byDefault(1)
-                   .describe("in a goal-biased expansion, aim one candidate at the goal (a "
-                             "numerical Jacobian from probe steps)"))
+                   .describe("in a goal-biased expansion, aim one candidate at the goal "
+                             "(kinematic_steering says how)"))
           .add(&S::kinematicSteering,
                Parameter::flag("kinematic_steering")
                    .byDefault(1)
