@@ -98,6 +98,7 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
             kinematic_->towards(start, aim, orientation, maxSpeed))
       return motion;
   }
+  ++jacobianAims_;
   const std::optional<Eigen::MatrixXd> perControl = probedJacobian(start);
   if (!perControl) return std::nullopt;
   // Per step and unit of control: the link's displacement, and its turn in metres

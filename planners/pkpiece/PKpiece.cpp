@@ -114,6 +114,10 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(steeredValid_); });
   addPlannerProgressProperty("steered_kept INTEGER",
                              [this] { return std::to_string(steeredKept_); });
+  // Steered motions that inverse kinematics could not aim (kinematic_steering), or all of them
+  // without it: the Jacobian aimed them.
+  addPlannerProgressProperty("steered_by_jacobian INTEGER",
+                             [this] { return std::to_string(steering_.jacobianAims()); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -152,6 +156,7 @@ void PKpiece::clear() {
   steeredCandidates_ = 0;
   steeredValid_ = 0;
   steeredKept_ = 0;
+  steering_.resetCount();
   bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();
   solutionConfidence_.reset();

@@ -140,6 +140,19 @@ TEST(PKpieceTest, SteeredCandidatesAreCountedAndWithoutUncertaintyAllValidOnesKe
   EXPECT_GT(aimed, 0);
   EXPECT_LE(valid, aimed);
   EXPECT_EQ(kept, valid);
+  // The KUKA reaches every aim on this scene: inverse kinematics aims them all.
+  EXPECT_EQ(nominal.property("steered_by_jacobian"), "0");
+}
+
+TEST(PKpieceTest, WithoutKinematicSteeringTheJacobianAimsEverySteeredCandidate) {
+  const PlanRun run =
+      plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1,
+           {{"uncertainty", "0"}, {"random_candidate", "0"}, {"kinematic_steering", "0"}});
+  const long aimed = std::stol(run.property("steered_candidates"));
+  EXPECT_GT(aimed, 0);
+  // Every steered candidate was aimed by the Jacobian; an aim whose probe step is invalid
+  // counts but makes no candidate.
+  EXPECT_GE(std::stol(run.property("steered_by_jacobian")), aimed);
 }
 
 TEST(PKpieceTest, APlanEndsTheSearchOnlyIfEnoughOfItsExecutionsSucceed) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "kautham/physics/PlanningContext.h"
@@ -40,6 +41,10 @@ class GoalSteering {
   /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
   /// what remains of the clearing push.
   double rankDistance(const double* state) const;
+  /// Motions aimed by the Jacobian (inverse kinematics found no pose, or `kinematic` is off)
+  /// since construction or resetCount().
+  std::uint64_t jacobianAims() const { return jacobianAims_; }
+  void resetCount() { jacobianAims_ = 0; }
 
  private:
   /// A control that drives the goal link straight at `target` and turns it towards
@@ -62,6 +67,7 @@ class GoalSteering {
   ClearingPush clearing_;
   bool clearingOn_;
   std::optional<JointSpaceSteering> kinematic_;
+  mutable std::uint64_t jacobianAims_ = 0;
 };
 
 }  // namespace kautham::planners
