@@ -116,21 +116,9 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
       jacobian * jacobian.transpose() +
       kDamping * kDamping * Eigen::Matrix<double, 6, 6>::Identity();
   const Eigen::VectorXd perStep = jacobian.transpose() * damped.ldlt().solve(toGo);
-  // The fewest steps whose control stays within the limits (and the link below maxSpeed);
-  // the longest one, scaled down, when none does.
-  const unsigned minSteps = si->getMinControlDuration();
-  const unsigned maxSteps = si->getMaxControlDuration();
-  const double largest = perStep.cwiseAbs().maxCoeff();
-  if (!std::isfinite(largest) || largest <= 0.0) return std::nullopt;
-  const double slowest =
-      maxSpeed > 0.0 ? toGo.head<3>().norm() / (maxSpeed * si->getPropagationStepSize()) : 0.0;
-  const unsigned steps =
-      std::clamp(static_cast<unsigned>(std::ceil(std::max(largest, slowest))), minSteps, maxSteps);
-  const Eigen::VectorXd control = perStep / std::max(static_cast<double>(steps), largest);
-  NominalMotion motion;
-  motion.control.assign(control.data(), control.data() + control.size());
-  motion.steps = steps;
-  return motion;
+  // The fewest steps whose control stays within the limits (and the link below maxSpeed).
+  return pacedMotion(*si, std::vector<double>(perStep.data(), perStep.data() + perStep.size()),
+                     perStep.cwiseAbs().maxCoeff(), toGo.head<3>().norm(), maxSpeed);
 }
 
 Eigen::Matrix3d GoalSteering::turnProjection(const Eigen::Matrix3d& turn) const {

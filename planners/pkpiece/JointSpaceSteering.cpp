@@ -57,16 +57,8 @@ std::optional<NominalMotion> JointSpaceSteering::towards(const double* state,
   for (std::size_t j = 0; j < from.size(); ++j)
     if (layout.joints[j].maxVelocity > 0.0)
       largest = std::max(largest, std::abs(perStep[j]) / layout.joints[j].maxVelocity);
-  if (!std::isfinite(largest) || largest <= 0.0) return std::nullopt;
   const double distance = (position - layout.goalLinkPosition(state)).norm();
-  const double slowest = maxSpeed > 0.0 ? distance / (maxSpeed * step) : 0.0;
-  const unsigned steps = std::clamp(static_cast<unsigned>(std::ceil(std::max(largest, slowest))),
-                                    si->getMinControlDuration(), si->getMaxControlDuration());
-  NominalMotion motion;
-  motion.steps = steps;
-  motion.control = oneStep;
-  for (double& u : motion.control) u /= std::max(static_cast<double>(steps), largest);
-  return motion;
+  return pacedMotion(*si, oneStep, largest, distance, maxSpeed);
 }
 
 }  // namespace kautham::planners

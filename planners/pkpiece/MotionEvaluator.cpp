@@ -1,12 +1,26 @@
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::planners {
+
+std::optional<NominalMotion> pacedMotion(const ompl::control::SpaceInformation& si,
+                                         std::vector<double> oneStep, double largest,
+                                         double distance, double maxSpeed) {
+  if (!std::isfinite(largest) || largest <= 0.0) return std::nullopt;
+  const double slowest = maxSpeed > 0.0 ? distance / (maxSpeed * si.getPropagationStepSize()) : 0.0;
+  NominalMotion motion;
+  motion.steps = std::clamp(static_cast<unsigned>(std::ceil(std::max(largest, slowest))),
+                            si.getMinControlDuration(), si.getMaxControlDuration());
+  motion.control = std::move(oneStep);
+  for (double& u : motion.control) u /= std::max(static_cast<double>(motion.steps), largest);
+  return motion;
+}
 
 MotionEvaluator::MotionEvaluator(physics::PlanningContext& context, double maxDisplacement)
     : context_(context),

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -32,6 +33,14 @@ struct NominalMotion {
   std::vector<double> control;
   unsigned steps = 0;
 };
+
+/// The control `oneStep` (a whole motion done in one propagation step) spread over the fewest
+/// steps that bring `largest` (its largest ratio to a control or speed limit) to at most 1 and
+/// keep the link, `distance` (m) from its aim, below `maxSpeed` (m/s; 0: no limit); the longest
+/// duration, scaled down, when none does. None when `largest` is not a positive number.
+std::optional<NominalMotion> pacedMotion(const ompl::control::SpaceInformation& si,
+                                         std::vector<double> oneStep, double largest,
+                                         double distance, double maxSpeed);
 
 /// A candidate motion to judge with particles, and where its particles start.
 struct ParticleRequest {
