@@ -2,10 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <map>
+#include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -54,6 +58,33 @@ planners::SolveHooks terminalHooks() {
   return hooks;
 }
 
+/// Why the planner's sampled runs failed, by reason, each with its three most frequent objects:
+/// "object tilted 1523 (can3 800, can4 400, can1 300, 2 more), target moved 210 (glass)".
+std::string failureSummary(const std::vector<planners::FailureCount>& failures) {
+  std::vector<std::string> order;  // reasons, most frequent first (failures is sorted so)
+  std::map<std::string, std::uint64_t> total;
+  std::map<std::string, std::vector<const planners::FailureCount*>> objects;
+  for (const planners::FailureCount& f : failures) {
+    if (total.count(f.reason) == 0) order.push_back(f.reason);
+    total[f.reason] += f.count;
+    if (!f.object.empty()) objects[f.reason].push_back(&f);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [&](const std::string& a, const std::string& b) { return total[a] > total[b]; });
+  std::string text;
+  for (const std::string& reason : order) {
+    text += fmt::format("{}{} {}", text.empty() ? "" : ", ", reason, total[reason]);
+    const auto& named = objects[reason];
+    if (named.empty()) continue;
+    std::string list;
+    for (std::size_t i = 0; i < std::min<std::size_t>(3, named.size()); ++i)
+      list += fmt::format("{}{} {}", i ? ", " : "", named[i]->object, named[i]->count);
+    if (named.size() > 3) list += fmt::format(", {} more", named.size() - 3);
+    text += " (" + list + ")";
+  }
+  return text;
+}
+
 void printSummary(const physics::PlanningContext& context, const planners::PlanRequest& request,
                   const planners::PlanOutcome& outcome, const physics::ReplayResult& replay) {
   const auto& stats = outcome.statistics;
@@ -74,6 +105,11 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
     for (const auto& [name, value] : stats.plannerProperties)
       properties += (properties.empty() ? "" : ", ") + name + " " + (value == "nan" ? "-" : value);
     fmt::print("planner   {}\n", properties);
+  }
+  if (!outcome.sampledFailures.empty()) {
+    std::uint64_t failed = 0;
+    for (const planners::FailureCount& f : outcome.sampledFailures) failed += f.count;
+    fmt::print("failed    {} particles: {}\n", failed, failureSummary(outcome.sampledFailures));
   }
   // A tree that hardly grows: say which rules rejected the states the planner tried.
   const auto rejections = context.rejections();

@@ -69,6 +69,13 @@ json plannerPropertiesJson(const planners::PlanStatistics& statistics) {
   return properties;
 }
 
+json sampledFailuresJson(const std::vector<planners::FailureCount>& failures) {
+  json list = json::array();
+  for (const planners::FailureCount& f : failures)
+    list.push_back({{"reason", f.reason}, {"object", f.object}, {"count", f.count}});
+  return list;
+}
+
 json bodiesJson(const WorldLayout& layout) {
   json bodies = json::array();
   for (const physics::BodyInfo& b : layout.bodies)
@@ -161,7 +168,9 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
        {{"tree_states", outcome.statistics.treeStates},
         {"propagations", outcome.statistics.propagations},
         {"physics_steps", outcome.statistics.physicsSteps},
-        {"planner", plannerPropertiesJson(outcome.statistics)}}},
+        {"planner", plannerPropertiesJson(outcome.statistics)},
+        // Why the planner's particles failed, most frequent first (p-KPIECE; else empty).
+        {"sampled_failures", sampledFailuresJson(outcome.sampledFailures)}}},
       {"timing", {{"planning_time", outcome.statistics.planningTime}}},
       {"propagation_step_size", stepSize},
       {"controls", controlsJson(outcome, stepSize, layout)},

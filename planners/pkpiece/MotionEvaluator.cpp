@@ -97,13 +97,39 @@ Eigen::Vector3d MotionEvaluator::targetPosition(const double* state) const {
                 : context_.validityChecker().targetStart();
 }
 
-bool MotionEvaluator::displacementWithinLimit(const double* start, const double* end) const {
+std::optional<std::size_t> MotionEvaluator::movedTooFar(const double* start,
+                                                        const double* end) const {
   for (std::size_t b : objectBodies_) {
     const Eigen::Vector3d a = physics::WorldLayout::position(start, b);
     const Eigen::Vector3d c = physics::WorldLayout::position(end, b);
-    if ((c - a).norm() > maxDisplacement_) return false;
+    if ((c - a).norm() > maxDisplacement_) return b;
   }
-  return true;
+  return std::nullopt;
+}
+
+bool MotionEvaluator::displacementWithinLimit(const double* start, const double* end) const {
+  return !movedTooFar(start, end);
+}
+
+void MotionEvaluator::tallyFailure(const ParticleJob& job, const ParticleResult& result) {
+  const physics::WorldValidityChecker& checker = context_.validityChecker();
+  if (!result.valid) {
+    // The run stopped at its first invalid state: the rule it broke, judged as the run judged
+    // it (against the particle's own target reference).
+    const physics::Violation violation = checker.check(result.end.data(), job.targetReference);
+    // Only a rule about an object names one (a robot rule broken beside a tilted can does not).
+    const bool aboutAnObject = violation >= physics::Violation::RobotTouchedTarget &&
+                               violation <= physics::Violation::TargetMoved;
+    const bool aboutAMovable = violation >= physics::Violation::ObjectTooFast;
+    failures_.addViolation(
+        violation,
+        aboutAnObject || aboutAMovable
+            ? checker.offendingObject(result.end.data(), job.targetReference, std::nullopt)
+            : std::nullopt);
+  } else if (const std::optional<std::size_t> moved =
+                 movedTooFar(job.start.data(), result.end.data())) {
+    failures_.addDisplacement(*moved);
+  }
 }
 
 ParticleVerdict MotionEvaluator::judgeNominal(const double* start, const double* end) const {
@@ -154,8 +180,10 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
       const std::size_t end = std::min(jobs.size(), ran + std::max(kParticleBatch, batch));
       std::vector<ParticleResult> results =
           runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
-      for (std::size_t p = ran; p < end; ++p)
+      for (std::size_t p = ran; p < end; ++p) {
+        tallyFailure(jobs[p], results[p - ran]);
         addOutcome(verdict, jobs[p].start.data(), std::move(results[p - ran]));
+      }
       ran = end;
       // Every remaining particle valid is the best case; computed as belief() computes, so
       // that equal counts round equally and a pruned candidate could at most tie.

@@ -129,6 +129,9 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
     if (name.rfind("iterations", 0) != 0)  // not all planners count them the same way
       outcome.statistics.plannerProperties.emplace_back(name.substr(0, name.find(' ')), value());
 
+  if (const auto* reporter = dynamic_cast<const FailureReporter*>(planner.get()))
+    outcome.sampledFailures = reporter->sampledFailures();
+
   const auto& pdef = context.problemDefinition();
   if (pdef->hasSolution()) {
     outcome.solved = status == ompl::base::PlannerStatus::EXACT_SOLUTION;

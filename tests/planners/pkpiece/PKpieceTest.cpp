@@ -175,6 +175,44 @@ TEST(PKpieceTest, APlanEndsTheSearchOnlyIfEnoughOfItsExecutionsSucceed) {
   EXPECT_EQ(nominal.property("verifications"), "0");
 }
 
+TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
+  // The diagnosis behind `kautham plan`'s "failed" line: each failed particle once, under the
+  // rule its first invalid state broke (named by the object that broke it), most frequent
+  // first; the particles are the same at any --threads, so the tally is too.
+  const std::vector<ParameterOverride> small = {{"particles", "5"}, {"candidates", "4"}};
+  std::vector<ParameterOverride> twoThreads = small;
+  twoThreads.push_back({"threads", "2"});
+  const PlanRun one = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
+  const PlanRun two = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, twoThreads);
+  const std::vector<FailureCount>& failures = one.outcome.sampledFailures;
+  ASSERT_FALSE(failures.empty());
+  std::uint64_t failed = 0;
+  for (std::size_t i = 0; i < failures.size(); ++i) {
+    failed += failures[i].count;
+    if (i > 0) {
+      EXPECT_GE(failures[i - 1].count, failures[i].count) << i;
+    }
+    // A rule about the robot names no object; the target's rules name the target.
+    if (failures[i].reason == "end effector left the workspace") {
+      EXPECT_EQ(failures[i].object, "");
+    }
+    if (failures[i].reason == "target moved" || failures[i].reason == "robot touched the target") {
+      EXPECT_EQ(failures[i].object, "glass");
+    }
+  }
+  EXPECT_LE(failed, std::stoull(one.property("particles")));
+  ASSERT_EQ(two.outcome.sampledFailures.size(), failures.size());
+  for (std::size_t i = 0; i < failures.size(); ++i) {
+    EXPECT_EQ(two.outcome.sampledFailures[i].reason, failures[i].reason);
+    EXPECT_EQ(two.outcome.sampledFailures[i].object, failures[i].object);
+    EXPECT_EQ(two.outcome.sampledFailures[i].count, failures[i].count);
+  }
+  // Without uncertainty no particle runs, and none fails.
+  const PlanRun nominal =
+      plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, {{"uncertainty", "0"}});
+  EXPECT_TRUE(nominal.outcome.sampledFailures.empty());
+}
+
 TEST(PKpieceTest, SameSeedGivesTheSamePlan) {
   const std::vector<ParameterOverride> small = {
       {"particles", "3"}, {"candidates", "3"}, {"verify_runs", "10"}, {"goal_confidence", "0.2"}};

@@ -9,6 +9,7 @@
 #include <ompl/base/Planner.h>
 
 #include "kautham/physics/Replay.h"
+#include "kautham/planners/FailureReporter.h"
 #include "kautham/planners/PlanRequest.h"
 
 namespace kautham::planners {
@@ -50,6 +51,9 @@ struct PlanOutcome {
   double goalDistance = 0.0;
   std::vector<physics::ControlStep> controls;
   std::vector<double> beliefs;  ///< per control, when the planner judges robustness (p-KPIECE)
+  /// Why the motions the planner ran in sampled worlds failed (p-KPIECE's particles), most
+  /// frequent first; empty for planners that run none.
+  std::vector<FailureCount> sampledFailures;
   PlanStatistics statistics;
   SearchTree tree;
   /// The planner's OMPL parameter set after setup, name -> value: every parameter of the

@@ -9,6 +9,7 @@
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/UncertaintySampler.h"
 #include "kautham/planners/pkpiece/ObjectPoseBelief.h"
+#include "kautham/planners/pkpiece/ParticleFailures.h"
 #include "kautham/planners/pkpiece/ParticleRunner.h"
 #include "kautham/planners/pkpiece/ParticleVerdict.h"
 #include "kautham/planners/pkpiece/ParticleWorkers.h"
@@ -113,10 +114,16 @@ class MotionEvaluator {
   /// Movable objects and the target: the bodies whose poses are uncertain.
   const std::vector<std::size_t>& objectBodies() const { return objectBodies_; }
   std::uint64_t particleCount() const { return particleCount_; }
+  /// Why the particles run so far failed (a diagnosis; nothing reads it back).
+  const ParticleFailures& particleFailures() const { return failures_; }
 
  private:
   Eigen::Vector3d targetPosition(const double* state) const;
   bool displacementWithinLimit(const double* start, const double* end) const;
+  /// The first object that moved more than d between the two states, if any.
+  std::optional<std::size_t> movedTooFar(const double* start, const double* end) const;
+  /// Adds a particle's failure, if it failed, to particleFailures().
+  void tallyFailure(const ParticleJob& job, const ParticleResult& result);
   /// A nominal run as a job: the mean contact parameters, the exact control, every state kept.
   ParticleJob nominalJob(const double* start, const NominalMotion& motion, bool throughGoal) const;
   NominalRun nominalRun(const double* start, ParticleResult&& result) const;
@@ -133,6 +140,7 @@ class MotionEvaluator {
   std::size_t stateSize_;
   std::size_t controlSize_;
   std::uint64_t particleCount_ = 0;
+  ParticleFailures failures_;
 };
 
 }  // namespace kautham::planners

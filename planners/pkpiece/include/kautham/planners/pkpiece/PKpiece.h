@@ -11,6 +11,7 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/BeliefReporter.h"
+#include "kautham/planners/FailureReporter.h"
 #include "kautham/planners/ParallelPlanner.h"
 #include "kautham/planners/pkpiece/GoalSteering.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
@@ -27,7 +28,10 @@ namespace kautham::planners {
 /// choices prefer robust regions. Built on OMPL's GridB, not on KPIECE1 (whose selection code
 /// cannot be overridden). Each motion stores its end state, its control and duration, its
 /// belief and the pose distribution of the objects at its end (ObjectPoseBelief).
-class PKpiece : public ompl::base::Planner, public BeliefReporter, public ParallelPlanner {
+class PKpiece : public ompl::base::Planner,
+                public BeliefReporter,
+                public FailureReporter,
+                public ParallelPlanner {
  public:
   PKpiece(physics::PlanningContext& context, const PKpieceSettings& settings);
   ~PKpiece() override;
@@ -36,6 +40,9 @@ class PKpiece : public ompl::base::Planner, public BeliefReporter, public Parall
   void clear() override;
   void getPlannerData(ompl::base::PlannerData& data) const override;
   std::vector<double> solutionBeliefs() const override { return solutionBeliefs_; }
+  std::vector<FailureCount> sampledFailures() const override {
+    return evaluator_.particleFailures().counts(context_.layout());
+  }
   /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
   void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
 

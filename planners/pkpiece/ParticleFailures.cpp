@@ -1,0 +1,34 @@
+#include "kautham/planners/pkpiece/ParticleFailures.h"
+
+#include <algorithm>
+
+namespace kautham::planners {
+
+void ParticleFailures::addViolation(physics::Violation violation, std::optional<std::size_t> body) {
+  ++counts_[{violation, body}];
+  ++total_;
+}
+
+void ParticleFailures::addDisplacement(std::size_t body) {
+  ++counts_[{physics::Violation::None, body}];
+  ++total_;
+}
+
+std::vector<FailureCount> ParticleFailures::counts(const physics::WorldLayout& layout) const {
+  std::vector<FailureCount> result;
+  for (const auto& [key, count] : counts_) {
+    const auto& [violation, body] = key;
+    FailureCount entry;
+    entry.reason =
+        violation == physics::Violation::None ? "moved more than d" : physics::toString(violation);
+    entry.object = body ? layout.bodies[*body].name : "";
+    entry.count = count;
+    result.push_back(std::move(entry));
+  }
+  // Most frequent first; the map's order (reason, body) breaks ties, so the list is stable.
+  std::stable_sort(result.begin(), result.end(),
+                   [](const FailureCount& a, const FailureCount& b) { return a.count > b.count; });
+  return result;
+}
+
+}  // namespace kautham::planners

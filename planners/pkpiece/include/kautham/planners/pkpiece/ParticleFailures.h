@@ -1,0 +1,35 @@
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "kautham/physics/WorldLayout.h"
+#include "kautham/physics/WorldValidityChecker.h"
+#include "kautham/planners/FailureReporter.h"
+
+namespace kautham::planners {
+
+/// Why particles failed, tallied by reason and object: the first rule a particle's first
+/// invalid state broke (and the object that broke it), or that an object moved more than d.
+/// A diagnosis only: nothing in the search reads it, so it changes no plan.
+class ParticleFailures {
+ public:
+  /// A particle stopped at an invalid state: the rule it broke and the body that broke it.
+  void addViolation(physics::Violation violation, std::optional<std::size_t> body);
+  /// A valid particle moved `body` more than the interaction limit d.
+  void addDisplacement(std::size_t body);
+  std::uint64_t total() const { return total_; }
+  /// Most frequent first, bodies named by the layout.
+  std::vector<FailureCount> counts(const physics::WorldLayout& layout) const;
+
+ private:
+  /// Violation::None stands for "moved more than d"; no body for the robot.
+  using Key = std::pair<physics::Violation, std::optional<std::size_t>>;
+  std::map<Key, std::uint64_t> counts_;
+  std::uint64_t total_ = 0;
+};
+
+}  // namespace kautham::planners
