@@ -14,6 +14,7 @@
 #include "kautham/core/Log.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/physics/SelfOverlap.h"
+#include "kautham/planners/geometric/GoalPoseOverlaps.h"
 
 namespace kautham::apps {
 
@@ -210,6 +211,28 @@ void printSideGrasp(const core::Problem& problem, const core::GoalRegion& region
       blockers.empty() ? "" : ": ", fmt::join(blockers, ", "));
 }
 
+/// What the arm overlaps at the pre-grasp in the start scene (GoalPoseOverlaps): the objects
+/// a plan must move.
+void printGoalPoseOverlaps(physics::PlanningContext& context) {
+  constexpr int kAttempts = 40;
+  const planners::geometric::GoalPoseOverlaps overlaps =
+      planners::geometric::goalPoseOverlaps(context, kAttempts);
+  if (overlaps.poses == 0) {
+    fmt::print(
+        "at goal     no arm pose found by inverse kinematics in {} tries (within 5 mm and "
+        "0.05 rad): the pre-grasp may be out of reach\n",
+        kAttempts);
+    return;
+  }
+  std::vector<std::string> touched;
+  for (const auto& [name, count] : overlaps.objects)
+    touched.push_back(fmt::format("{} {}", name, count));
+  fmt::print(
+      "at goal     {} arm poses by inverse kinematics, {} touch nothing in the start scene{}{}\n",
+      overlaps.poses, overlaps.touchFree,
+      touched.empty() ? "" : "; objects touched: ", fmt::join(touched, ", "));
+}
+
 /// Where the goal link is at the start (before the start is checked, so a person writing
 /// <Init> sees where it put the robot even when the start is rejected).
 void printGoalLinkStart(const core::Problem& problem, const core::Query& query) {
@@ -263,6 +286,7 @@ int runCheck(const CheckOptions& options) {
         problem.queries[q].name, region.link, context->goal().getThreshold(), goal.x(), goal.y(),
         goal.z(), approach, 100.0 * context->goal().distance(start));
     printSideGrasp(problem, region);
+    if (region.approach) printGoalPoseOverlaps(*context);
   }
   fmt::print("ok\n");
   return kExitSolved;

@@ -3,6 +3,7 @@
 // executes, on the real problem files.
 
 #include <algorithm>
+#include <map>
 #include <random>
 #include <set>
 #include <utility>
@@ -18,6 +19,7 @@
 #include "kautham/planners/Solve.h"
 #include "kautham/planners/geometric/ComponentPRM.h"
 #include "kautham/planners/geometric/GeometricQuery.h"
+#include "kautham/planners/geometric/GoalPoseOverlaps.h"
 
 namespace kautham::planners {
 namespace {
@@ -159,6 +161,30 @@ TEST(InverseKinematicsTest, SolvesTheSidePreGraspOfTheClutterSceneWithinHalfItsT
     EXPECT_LE(scene.context.goal().distance(state.data()), 0.5 * goal.tolerance + 1e-9);
   }
   EXPECT_GE(solved, 3);  // a 7-joint arm from random seeds: about one in five converges
+}
+
+TEST(GoalPoseOverlapsTest, TheDenseScenesAskTheArmToMoveMoreThanTheFreeSpacesBlocker) {
+  // kuka_clutter_20: can1 stands in the free space between the fingers, and can3, 11 cm
+  // behind it, where the wrist is at the pre-grasp: every arm pose touches both.
+  Scene dense("problems/kuka_clutter_20.xml");
+  const geometric::GoalPoseOverlaps overlaps = geometric::goalPoseOverlaps(dense.context);
+  ASSERT_GT(overlaps.poses, 0);
+  EXPECT_EQ(overlaps.touchFree, 0);
+  std::map<std::string, int> touched(overlaps.objects.begin(), overlaps.objects.end());
+  EXPECT_EQ(touched["can1"], overlaps.poses);
+  EXPECT_EQ(touched["can3"], overlaps.poses);
+  for (std::size_t i = 1; i < overlaps.objects.size(); ++i)
+    EXPECT_GE(overlaps.objects[i - 1].second, overlaps.objects[i].second);
+  // yumi_clutter_5 leaves the pre-grasp free; the answer is the same every time.
+  Scene open("problems/yumi_clutter_5.xml");
+  const geometric::GoalPoseOverlaps free = geometric::goalPoseOverlaps(open.context);
+  ASSERT_GT(free.poses, 0);
+  EXPECT_EQ(free.touchFree, free.poses);
+  EXPECT_TRUE(free.objects.empty());
+  EXPECT_EQ(geometric::goalPoseOverlaps(open.context).poses, free.poses);
+  // A configuration goal (Kautham's <Goal>) has no pose to check.
+  Scene configuration("problems/kautham/kuka_table.xml");
+  EXPECT_EQ(geometric::goalPoseOverlaps(configuration.context).poses, 0);
 }
 
 struct Planned {
