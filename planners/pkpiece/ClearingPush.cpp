@@ -33,10 +33,18 @@ constexpr double kFingerMiddle = 0.025;  // m
 constexpr double kFootprint = 0.12;  // m
 // Margin above the workspace floor (the goal link may not leave the workspace).
 constexpr double kFloorMargin = 0.012;  // m
+// What a push still to come after the current one adds to the remaining length: more than
+// any single push's own length, so a state with one push done ranks before any state still
+// on the one before.
+constexpr double kLaterPush = 0.5;  // m
+// Pushing in line (the gripper pointing along the push), the goal link starts this far before
+// the object's centre: the fingertips 3.7 cm short of a can.
+constexpr double kInLineStandOff = 0.07;  // m
 }  // namespace
 
-ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch)
-    : context_(context) {
+ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch, double behind,
+                           double corridorPitch)
+    : context_(context), behind_(behind) {
   const physics::GoalSpec& spec = context.goal().spec();
   if (!spec.freeSpace || !spec.approach || !spec.levelAxis) return;
   back_ = -*spec.approach;
@@ -50,46 +58,100 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch
   const Eigen::AngleAxisd pitchDown(-pitch, across_);
   orientation_ = pitchDown * context.goal().nominalGoalPose().linear();
   fingers_ = pitchDown * Eigen::Vector3d(-back_);
+  const Eigen::AngleAxisd steepDown(-std::max(pitch, corridorPitch), across_);
+  steepOrientation_ = steepDown * context.goal().nominalGoalPose().linear();
+  steepFingers_ = steepDown * Eigen::Vector3d(-back_);
+  const physics::WorldLayout& layout = context.layout();
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    const physics::BodyInfo& body = layout.bodies[b];
+    if (body.role != physics::BodyRole::Movable || body.objectIndex < 0) continue;
+    const Eigen::AlignedBox3d bounds = core::boundsAtHome(
+        context.problem().objects.at(static_cast<std::size_t>(body.objectIndex)));
+    footprints_.push_back({b,
+                           physics::WorldLayout::position(context.startState().data(), b).head<2>(),
+                           bounds.min().head<2>(), bounds.max().head<2>()});
+  }
+}
+
+std::optional<std::size_t> ClearingPush::corridorBlocker(const double* state) const {
+  if (halfWidth_ <= 0.0 || behind_ <= 0.0) return std::nullopt;
+  const Eigen::Vector2d goal = context_.goal().position().head<2>();
+  const Eigen::Vector2d along = -back_.head<2>();
+  const Eigen::Vector2d across = across_.head<2>();
+  std::optional<std::size_t> furthest;
+  double furthestBack = 0.0;
+  for (const Footprint& f : footprints_) {
+    const Eigen::Vector2d shift = physics::WorldLayout::position(state, f.body).head<2>() - f.start;
+    // The footprint's corners, where the body is now, against the strip behind the goal.
+    double alongLo = INFINITY, alongHi = -INFINITY, acrossLo = INFINITY, acrossHi = -INFINITY;
+    for (double x : {f.min.x(), f.max.x()})
+      for (double y : {f.min.y(), f.max.y()}) {
+        const Eigen::Vector2d corner = Eigen::Vector2d(x, y) + shift - goal;
+        alongLo = std::min(alongLo, corner.dot(along));
+        alongHi = std::max(alongHi, corner.dot(along));
+        acrossLo = std::min(acrossLo, corner.dot(across));
+        acrossHi = std::max(acrossHi, corner.dot(across));
+      }
+    // Behind the goal point (the free space in front is the free space's business).
+    const bool inStrip = alongHi > -behind_ && alongLo < 0.0 && acrossHi > -halfWidth_ &&
+                         acrossLo < halfWidth_ && 0.5 * (alongLo + alongHi) < 0.0;
+    if (inStrip && -alongHi >= furthestBack) {
+      furthestBack = -alongHi;
+      furthest = f.body;
+    }
+  }
+  return furthest;
 }
 
 std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const {
   if (halfWidth_ <= 0.0) return std::nullopt;
+  const std::optional<std::size_t> inFreeSpace = context_.goal().freeSpaceBlocker(state);
+  // The corridor first; after it, the free space (a push of its own, counted as kLaterPush).
+  if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
+    return pushStep(state, *inCorridor,
+                    inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0, true);
+  if (inFreeSpace) return pushStep(state, *inFreeSpace, 0.0, false);
+  return std::nullopt;
+}
+
+ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t blocker, double later,
+                                          bool steep) const {
   const physics::WorkspaceGoal& goal = context_.goal();
-  const std::optional<std::size_t> blocker = goal.freeSpaceBlocker(state);
-  if (!blocker) return std::nullopt;
+  const Eigen::Matrix3d& turn = steep ? steepOrientation_ : orientation_;
+  const Eigen::Vector3d& fingers = steep ? steepFingers_ : fingers_;
   // The goal link aims where the fingers' middle meets the object below its centre.
-  Eigen::Vector3d object = physics::WorldLayout::position(state, *blocker);
+  Eigen::Vector3d object = physics::WorldLayout::position(state, blocker);
   object.z() -= kBelowCentre;
-  object += kFingerMiddle * fingers_;
+  object += kFingerMiddle * fingers;
   object.z() = std::max(object.z(), lowest_);
   // Push away from the side with more room: the stand-off lies on the other side.
   const double standOff = halfWidth_ + kStandOff;
   const Eigen::Vector3d plus = object + standOff * across_;
   const Eigen::Vector3d minus = object - standOff * across_;
-  const bool fromPlus = room(state, plus, *blocker) >= room(state, minus, *blocker);
+  const bool fromPlus = room(state, plus, back_, blocker) >= room(state, minus, back_, blocker);
   const Eigen::Vector3d direction = fromPlus ? Eigen::Vector3d(-across_) : across_;
   const Eigen::Vector3d start = fromPlus ? plus : minus;
   const Eigen::Vector3d end = object + kPushThrough * direction;
-  const double endToGoal = (goal.position() - end).norm();
+  const double endToGoal = later + (goal.position() - end).norm();
 
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const Eigen::Vector3d fromObject = link - object;
   const double along = fromObject.dot(direction);
   const double offLine = (fromObject - along * direction).norm();
   if (along <= 0.0 && offLine <= kOnLine)
-    return Step{end, orientation_, (end - link).norm() + endToGoal, true};
+    return Step{end, turn, (end - link).norm() + endToGoal, true};
   const Eigen::Vector3d fromStart = link - start;
   const double pushLength = (end - start).norm();
   if (std::hypot(fromStart.x(), fromStart.y()) <= kOnLine)
-    return Step{start, orientation_, fromStart.norm() + pushLength + endToGoal, false};
+    return Step{start, turn, fromStart.norm() + pushLength + endToGoal, false};
   const Eigen::Vector3d above = start + kAbove * Eigen::Vector3d::UnitZ();
-  return Step{above, orientation_, (above - link).norm() + kAbove + pushLength + endToGoal, false};
+  return Step{above, turn, (above - link).norm() + kAbove + pushLength + endToGoal, false};
 }
 
 double ClearingPush::room(const double* state, const Eigen::Vector3d& point,
-                          std::size_t blocker) const {
+                          const Eigen::Vector3d& trail, std::size_t blocker) const {
   double nearest = std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d wrist = point + kFootprint * back_;
+  const Eigen::Vector3d wrist = point + kFootprint * trail;
   const auto& bodies = context_.layout().bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;

@@ -30,10 +30,11 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 }  // namespace
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
-                           bool clearing, double pushPitch, bool kinematic)
+                           bool clearing, double pushPitch, bool kinematic, double clearBehind,
+                           double corridorPitch)
     : context_(context),
       evaluator_(evaluator),
-      clearing_(context, pushPitch),
+      clearing_(context, pushPitch, clearBehind, corridorPitch),
       clearingOn_(clearing) {
   if (kinematic) kinematic_.emplace(context);
 }
@@ -50,12 +51,11 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   // While an object fills the goal's free space, the straight move at the goal point only
   // shoves it on towards the target: steer the clearing push instead, or (without it) keep
   // the random candidates.
-  if (context_.goal().freeSpaceBlocker(start)) {
-    if (!clearingOn_) return std::nullopt;
-    const std::optional<ClearingPush::Step> step = clearing_.next(start);
-    if (!step) return std::nullopt;
-    return steer(start, step->waypoint, step->orientation, step->pushing ? kPushSpeed : kMoveSpeed);
-  }
+  if (clearingOn_)
+    if (const std::optional<ClearingPush::Step> step = clearing_.next(start))
+      return steer(start, step->waypoint, step->orientation,
+                   step->pushing ? kPushSpeed : kMoveSpeed);
+  if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
   return steer(start, context_.goal().position(), context_.goal().nominalGoalPose().linear(), 0.0);
 }
 

@@ -115,5 +115,50 @@ TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
   EXPECT_LT(after, before - 0.07) << before << " -> " << after;
 }
 
+TEST(ClearingPushTest, ClearsTheCorridorBehindThePreGraspFirstFurthestBack) {
+  // kuka_clutter_20: can1 fills the free space and reaches behind the goal point; can3 stands
+  // 16 cm behind it, where the wrist is at the pre-grasp (kautham check: every arm pose touches
+  // both). Within 0.2 m, can3 is the one furthest back: it goes first.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  const auto& bodies = context.layout().bodies;
+  const ClearingPush corridor(context, kPitch, 0.2, 1.2);
+  const std::vector<double>& start = context.startState();
+  const std::optional<std::size_t> first = corridor.corridorBlocker(start.data());
+  ASSERT_TRUE(first.has_value());
+  EXPECT_EQ(bodies[*first].name, "can3");
+  // The push that clears it points the gripper down steeply, so the wrist passes over can4
+  // behind it; without the corridor the free space's can1 is pushed as before.
+  const ClearingPush::Step step = *corridor.next(start.data());
+  EXPECT_NEAR(step.orientation.col(2).z(), -std::sin(1.2), 1e-9);
+  const ClearingPush freeSpaceOnly(context, kPitch);
+  EXPECT_FALSE(freeSpaceOnly.corridorBlocker(start.data()).has_value());
+  EXPECT_NEAR(freeSpaceOnly.next(start.data())->orientation.col(2).z(), -std::sin(kPitch), 1e-9);
+}
+
+TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
+  // The same scene, the real physics: the gripper steered by inverse kinematics along the
+  // clearing's waypoints, motion after motion, clears can3 from the corridor and can1 from the
+  // free space, each motion valid all along.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  MotionEvaluator evaluator(context, 0.0);
+  const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2);
+  const ClearingPush clearing(context, kPitch, 0.2, 1.2);
+  std::vector<double> state = context.startState();
+  int motions = 0;
+  for (; motions < 16 && clearing.next(state.data()); ++motions) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
+    ASSERT_TRUE(steered.has_value()) << "motion " << motions;
+    const NominalRun run =
+        evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
+    ASSERT_EQ(run.steps, steered->steps) << "motion " << motions << " broke a rule";
+    state = run.end;
+  }
+  EXPECT_FALSE(clearing.next(state.data()).has_value()) << "not clear after " << motions;
+  EXPECT_FALSE(context.goal().freeSpaceBlocker(state.data()).has_value());
+  EXPECT_EQ(steering.jacobianAims(), 0u);
+}
+
 }  // namespace
 }  // namespace kautham::planners

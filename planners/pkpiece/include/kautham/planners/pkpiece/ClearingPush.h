@@ -1,6 +1,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -19,10 +20,18 @@ namespace kautham::planners {
 /// top, tips over before it slides: it slides only when pushed below radius / friction (6.6 cm for
 /// a can with friction 0.5).
 ///
+/// With `behind` > 0 it first clears the part of the approach corridor that the arm fills at
+/// the pre-grasp (up to `behind` metres back from the goal point, as wide as the free space):
+/// the wrist stands there at the goal, and pushes an object left there high, where it tips.
+/// Those objects go first, the one furthest back first, each pushed across the same way but
+/// with the gripper pointing down steeply (`corridorPitch`), so that the wrist passes over the
+/// cans behind the one pushed. The free space's blocker counts among them when it reaches
+/// behind the goal point.
+///
 /// The waypoints follow the object as it moves, so a push in progress goes on until the
-/// object leaves the free space. `remaining` is the length of the rest of this plan and on
-/// to the goal: the goal bias ranks blocked states by it, so the motions furthest along the
-/// clearing are the ones grown.
+/// object leaves the free space (or the corridor). `remaining` is the length of the rest of
+/// this plan and on to the goal: the goal bias ranks blocked states by it, so the motions
+/// furthest along the clearing are the ones grown.
 class ClearingPush {
  public:
   struct Step {
@@ -33,14 +42,26 @@ class ClearingPush {
   };
 
   /// `pitch` (rad): how far the gripper points down on the way to and during the push.
-  ClearingPush(const physics::PlanningContext& context, double pitch);
+  /// `behind` (m): how far back from the goal point the corridor is cleared (0: not at all),
+  /// with the gripper pointing down by `corridorPitch` (rad; at least `pitch`).
+  ClearingPush(const physics::PlanningContext& context, double pitch, double behind = 0.0,
+               double corridorPitch = 0.0);
 
-  /// None when the free space is clear, or the goal has no free space or side approach.
+  /// None when the free space and the corridor are clear, or the goal has no free space or
+  /// side approach.
   std::optional<Step> next(const double* state) const;
+  /// The movable object in the corridor behind the goal point that is pushed first (the one
+  /// furthest back), if any.
+  std::optional<std::size_t> corridorBlocker(const double* state) const;
 
  private:
-  /// How near the stand-off at `point` (and the wrist behind it) the other objects stand.
-  double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker) const;
+  /// The push that clears `blocker`; `later` (m) stands for the clearing still to come after
+  /// it (in the remaining length). `steep`: pitched by the corridor's pitch.
+  Step pushStep(const double* state, std::size_t blocker, double later, bool steep) const;
+  /// How near the stand-off at `point` (and the wrist behind it, along `trail`) the other
+  /// objects stand.
+  double room(const double* state, const Eigen::Vector3d& point, const Eigen::Vector3d& trail,
+              std::size_t blocker) const;
 
   const physics::PlanningContext& context_;
   Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
@@ -51,6 +72,19 @@ class ClearingPush {
   /// fingers point).
   Eigen::Matrix3d orientation_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d fingers_ = Eigen::Vector3d::Zero();
+  /// The corridor push's posture and approach, pitched by the corridor's pitch.
+  Eigen::Matrix3d steepOrientation_ = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d steepFingers_ = Eigen::Vector3d::Zero();
+  /// A movable object's footprint on the table at the start: its horizontal bounds, and where
+  /// its body was then (a footprint moves with its body).
+  struct Footprint {
+    std::size_t body;
+    Eigen::Vector2d start;
+    Eigen::Vector2d min;
+    Eigen::Vector2d max;
+  };
+  std::vector<Footprint> footprints_;
+  double behind_ = 0.0;
 };
 
 }  // namespace kautham::planners

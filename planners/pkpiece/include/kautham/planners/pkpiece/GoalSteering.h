@@ -22,7 +22,8 @@ namespace kautham::planners {
 ///
 /// While an object fills the goal's free space (WorkspaceGoal::freeSpaceBlocker) the straight
 /// move would push that object on to the target: it steers the ClearingPush instead (or,
-/// with `clearing` off, not at all).
+/// with `clearing` off, not at all); with `clearBehind`, also while an object stands in the
+/// corridor behind the goal, where the arm will be.
 class GoalSteering {
  public:
   /// Blocked states rank behind every clear one by at least this much (m).
@@ -31,8 +32,12 @@ class GoalSteering {
   /// `pushPitch` (rad): how far the clearing push points the gripper down. `kinematic`: aim by
   /// inverse kinematics and a line in joint space (JointSpaceSteering), with the Jacobian
   /// only where inverse kinematics finds no pose.
+  /// `clearBehind` (m): how far back from the goal point the clearing push also clears the
+  /// approach corridor, first, pitched by `corridorPitch` (ClearingPush; 0: the free space
+  /// only).
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
-               double pushPitch, bool kinematic);
+               double pushPitch, bool kinematic, double clearBehind = 0.0,
+               double corridorPitch = 0.0);
 
   /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
   /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.

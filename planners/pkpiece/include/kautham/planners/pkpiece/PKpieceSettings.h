@@ -49,6 +49,12 @@ struct PKpieceSettings {
   /// How far the clearing push points the gripper down (rad), so the wrist rides above the
   /// table.
   double pushPitch;
+  /// With the clearing push: how far back from the goal point the approach corridor is cleared
+  /// first, where the arm stands at the pre-grasp (m; 0: the free space only).
+  double clearBehind;
+  /// How far the corridor's pushes point the gripper down (rad), so the wrist passes over the
+  /// objects behind.
+  double corridorPitch;
   /// Before a plan ends the search, it is executed this many times open loop in sampled
   /// worlds (PlanVerifier); it ends the search only if at least goalConfidence of them
   /// succeed, and as many fresh executions then give its estimated success. 0: the
@@ -165,6 +171,19 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0.0, 1.5)
                    .describe("how far the clearing push points the gripper down (rad), so the "
                              "wrist rides above the table"))
+          .add(&S::clearBehind,
+               Parameter::real("clear_behind")
+                   .byDefault(0.2)
+                   .range(0.0, 1.0)
+                   .describe("with clearing_push: objects in the approach corridor up to this "
+                             "far behind the goal point (m), where the arm stands at the "
+                             "pre-grasp, are pushed out first (0: the free space only)"))
+          .add(&S::corridorPitch,
+               Parameter::real("corridor_pitch")
+                   .byDefault(1.2)
+                   .range(0.0, 1.5)
+                   .describe("how far the corridor's pushes point the gripper down (rad), so "
+                             "the wrist passes over the objects behind"))
           .add(&S::verifyRuns,
                Parameter::integer("verify_runs")
                    .byDefault(50)
