@@ -140,7 +140,11 @@ const std::vector<SideSetup>& sideSetups() {
        "0.55 0.4 1.2",
        "      <!-- the clearing push held level: the YuMi's wrist rides above the table at the\n"
        "           push height (p-KPIECE's default pitch is for the KUKA's; docs/scenes.md) -->\n"
-       "      <Parameter name=\"push_pitch\">0</Parameter>\n"},
+       "      <Parameter name=\"push_pitch\">0</Parameter>\n"
+       "      <!-- the corridor cleared up to 15 cm behind the pre-grasp: pushing a can 20 cm\n"
+       "           back, near the YuMi's body, takes the gripper out of the workspace\n"
+       "           (docs/benchmarks.md, session 13) -->\n"
+       "      <Parameter name=\"clear_behind\">0.15</Parameter>\n"},
   };
   return setups;
 }
