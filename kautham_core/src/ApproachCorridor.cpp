@@ -5,17 +5,8 @@
 
 namespace kautham::core {
 
-namespace {
-
-/// An interval along one axis of the table plane.
-struct Interval {
-  double lo, hi;
-  bool overlaps(const Interval& other) const { return lo < other.hi && other.lo < hi; }
-};
-
-/// The interval a footprint's corners cover along a horizontal direction.
-Interval project(const Eigen::AlignedBox3d& box, const Eigen::Vector2d& origin,
-                 const Eigen::Vector2d& direction) {
+Interval projectFootprint(const Eigen::AlignedBox3d& box, const Eigen::Vector2d& origin,
+                          const Eigen::Vector2d& direction) {
   Interval out{INFINITY, -INFINITY};
   for (double x : {box.min().x(), box.max().x()})
     for (double y : {box.min().y(), box.max().y()}) {
@@ -24,8 +15,6 @@ Interval project(const Eigen::AlignedBox3d& box, const Eigen::Vector2d& origin,
     }
   return out;
 }
-
-}  // namespace
 
 std::vector<std::string> approachBlockers(const Problem& problem, const GoalRegion& goal) {
   const std::optional<Eigen::Vector3d> approach = problem.goalApproach(goal);
@@ -48,8 +37,8 @@ std::vector<std::string> approachBlockers(const Problem& problem, const GoalRegi
   for (const ObjectInstance& object : problem.objects) {
     if (object.role != ObjectRole::Movable) continue;
     const Eigen::AlignedBox3d footprint = boundsAtHome(object);
-    if (project(footprint, origin, along).overlaps(strip) &&
-        project(footprint, origin, across).overlaps(width))
+    if (projectFootprint(footprint, origin, along).overlaps(strip) &&
+        projectFootprint(footprint, origin, across).overlaps(width))
       names.push_back(object.name);
   }
   return names;

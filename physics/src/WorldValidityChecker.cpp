@@ -38,6 +38,26 @@ const char* toString(Violation violation) {
   return "?";
 }
 
+bool isObjectRule(Violation violation) {
+  switch (violation) {
+    case Violation::RobotTouchedTarget:
+    case Violation::TargetMoved:
+    case Violation::ObjectTooFast:
+    case Violation::ObjectTilted:
+    case Violation::ObjectOffSupport:
+      return true;
+    case Violation::None:
+    case Violation::SimulationDiverged:
+    case Violation::RobotTouchedFixed:
+    case Violation::OutsideWorkspace:
+    case Violation::JointLimit:
+    case Violation::JointTooFast:
+    case Violation::LinkTooFast:
+      return false;
+  }
+  return false;
+}
+
 namespace {
 // An object whose centre drops this far below its start height has left the support surface
 // (fallen off its edge, or through it).

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "kautham/core/ApproachCorridor.h"
 #include "kautham/core/SegmentDistance.h"
 
 namespace kautham::planners {
@@ -37,9 +38,6 @@ constexpr double kFloorMargin = 0.012;  // m
 // any single push's own length, so a state with one push done ranks before any state still
 // on the one before.
 constexpr double kLaterPush = 0.5;  // m
-// Pushing in line (the gripper pointing along the push), the goal link starts this far before
-// the object's centre: the fingertips 3.7 cm short of a can.
-constexpr double kInLineStandOff = 0.07;  // m
 }  // namespace
 
 ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch, double behind,
@@ -67,9 +65,8 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch
     if (body.role != physics::BodyRole::Movable || body.objectIndex < 0) continue;
     const Eigen::AlignedBox3d bounds = core::boundsAtHome(
         context.problem().objects.at(static_cast<std::size_t>(body.objectIndex)));
-    footprints_.push_back({b,
-                           physics::WorldLayout::position(context.startState().data(), b).head<2>(),
-                           bounds.min().head<2>(), bounds.max().head<2>()});
+    footprints_.push_back(
+        {b, physics::WorldLayout::position(context.startState().data(), b), bounds});
   }
 }
 
@@ -80,23 +77,18 @@ std::optional<std::size_t> ClearingPush::corridorBlocker(const double* state) co
   const Eigen::Vector2d across = across_.head<2>();
   std::optional<std::size_t> furthest;
   double furthestBack = 0.0;
+  // Behind the goal point (the free space in front is the free space's business).
+  const core::Interval strip{-behind_, 0.0};
+  const core::Interval width{-halfWidth_, halfWidth_};
   for (const Footprint& f : footprints_) {
-    const Eigen::Vector2d shift = physics::WorldLayout::position(state, f.body).head<2>() - f.start;
-    // The footprint's corners, where the body is now, against the strip behind the goal.
-    double alongLo = INFINITY, alongHi = -INFINITY, acrossLo = INFINITY, acrossHi = -INFINITY;
-    for (double x : {f.min.x(), f.max.x()})
-      for (double y : {f.min.y(), f.max.y()}) {
-        const Eigen::Vector2d corner = Eigen::Vector2d(x, y) + shift - goal;
-        alongLo = std::min(alongLo, corner.dot(along));
-        alongHi = std::max(alongHi, corner.dot(along));
-        acrossLo = std::min(acrossLo, corner.dot(across));
-        acrossHi = std::max(acrossHi, corner.dot(across));
-      }
-    // Behind the goal point (the free space in front is the free space's business).
-    const bool inStrip = alongHi > -behind_ && alongLo < 0.0 && acrossHi > -halfWidth_ &&
-                         acrossLo < halfWidth_ && 0.5 * (alongLo + alongHi) < 0.0;
-    if (inStrip && -alongHi >= furthestBack) {
-      furthestBack = -alongHi;
+    // The footprint where the body is now.
+    const Eigen::AlignedBox3d now =
+        f.bounds.translated(physics::WorldLayout::position(state, f.body) - f.start);
+    const core::Interval alongIt = core::projectFootprint(now, goal, along);
+    const bool inStrip = alongIt.overlaps(strip) && 0.5 * (alongIt.lo + alongIt.hi) < 0.0 &&
+                         core::projectFootprint(now, goal, across).overlaps(width);
+    if (inStrip && -alongIt.hi >= furthestBack) {
+      furthestBack = -alongIt.hi;
       furthest = f.body;
     }
   }
@@ -128,7 +120,7 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const double standOff = halfWidth_ + kStandOff;
   const Eigen::Vector3d plus = object + standOff * across_;
   const Eigen::Vector3d minus = object - standOff * across_;
-  const bool fromPlus = room(state, plus, back_, blocker) >= room(state, minus, back_, blocker);
+  const bool fromPlus = room(state, plus, blocker) >= room(state, minus, blocker);
   const Eigen::Vector3d direction = fromPlus ? Eigen::Vector3d(-across_) : across_;
   const Eigen::Vector3d start = fromPlus ? plus : minus;
   const Eigen::Vector3d end = object + kPushThrough * direction;
@@ -149,9 +141,9 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
 }
 
 double ClearingPush::room(const double* state, const Eigen::Vector3d& point,
-                          const Eigen::Vector3d& trail, std::size_t blocker) const {
+                          std::size_t blocker) const {
   double nearest = std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d wrist = point + kFootprint * trail;
+  const Eigen::Vector3d wrist = point + kFootprint * back_;
   const auto& bodies = context_.layout().bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;

@@ -111,24 +111,19 @@ bool MotionEvaluator::displacementWithinLimit(const double* start, const double*
   return !movedTooFar(start, end);
 }
 
-void MotionEvaluator::tallyFailure(const ParticleJob& job, const ParticleResult& result) {
+void MotionEvaluator::tallyLastFailure(const ParticleJob& job, const ParticleVerdict& verdict) {
   const physics::WorldValidityChecker& checker = context_.validityChecker();
-  if (!result.valid) {
+  const double* end = verdict.ends.back().data();
+  if (!verdict.endValid.back()) {
     // The run stopped at its first invalid state: the rule it broke, judged as the run judged
     // it (against the particle's own target reference).
-    const physics::Violation violation = checker.check(result.end.data(), job.targetReference);
-    // Only a rule about an object names one (a robot rule broken beside a tilted can does not).
-    const bool aboutAnObject = violation >= physics::Violation::RobotTouchedTarget &&
-                               violation <= physics::Violation::TargetMoved;
-    const bool aboutAMovable = violation >= physics::Violation::ObjectTooFast;
-    failures_.addViolation(
-        violation,
-        aboutAnObject || aboutAMovable
-            ? checker.offendingObject(result.end.data(), job.targetReference, std::nullopt)
-            : std::nullopt);
-  } else if (const std::optional<std::size_t> moved =
-                 movedTooFar(job.start.data(), result.end.data())) {
-    failures_.addDisplacement(*moved);
+    const physics::Violation violation = checker.check(end, job.targetReference);
+    failures_.addViolation(violation,
+                           physics::isObjectRule(violation)
+                               ? checker.offendingObject(end, job.targetReference, std::nullopt)
+                               : std::nullopt);
+  } else if (!verdict.endInteractionOk.back()) {
+    failures_.addDisplacement(*movedTooFar(job.start.data(), end));
   }
 }
 
@@ -181,8 +176,8 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
       std::vector<ParticleResult> results =
           runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
       for (std::size_t p = ran; p < end; ++p) {
-        tallyFailure(jobs[p], results[p - ran]);
         addOutcome(verdict, jobs[p].start.data(), std::move(results[p - ran]));
+        tallyLastFailure(jobs[p], verdict);
       }
       ran = end;
       // Every remaining particle valid is the best case; computed as belief() computes, so

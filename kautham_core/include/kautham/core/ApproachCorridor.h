@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "kautham/core/Problem.h"
 
 namespace kautham::core {
@@ -14,5 +16,16 @@ namespace kautham::core {
 /// (along the level axis). An object counts when its footprint (the horizontal bounding box of
 /// its collision shapes) overlaps the strip. Empty when the goal has no corridor.
 std::vector<std::string> approachBlockers(const Problem& problem, const GoalRegion& goal);
+
+/// An interval along one axis of the table plane.
+struct Interval {
+  double lo, hi;
+  bool overlaps(const Interval& other) const { return lo < other.hi && other.lo < hi; }
+};
+
+/// The interval a footprint (a world-aligned box, seen from above) covers along a horizontal
+/// unit `direction`, measured from `origin`.
+Interval projectFootprint(const Eigen::AlignedBox3d& box, const Eigen::Vector2d& origin,
+                          const Eigen::Vector2d& direction);
 
 }  // namespace kautham::core

@@ -30,6 +30,9 @@ enum class Violation {
   ObjectOffSupport,    ///< a movable object left the table (or fell)
 };
 const char* toString(Violation violation);
+/// Whether the rule is about an object (the target touched or moved, a movable object too fast,
+/// tilted or off the support): WorldValidityChecker::offendingObject names it.
+bool isObjectRule(Violation violation);
 constexpr std::size_t kViolationKinds = static_cast<std::size_t>(Violation::ObjectOffSupport) + 1;
 
 /// Which constraints a checker applies.

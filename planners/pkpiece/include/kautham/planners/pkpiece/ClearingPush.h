@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "kautham/physics/PlanningContext.h"
 
@@ -58,10 +59,8 @@ class ClearingPush {
   /// The push that clears `blocker`; `later` (m) stands for the clearing still to come after
   /// it (in the remaining length). `steep`: pitched by the corridor's pitch.
   Step pushStep(const double* state, std::size_t blocker, double later, bool steep) const;
-  /// How near the stand-off at `point` (and the wrist behind it, along `trail`) the other
-  /// objects stand.
-  double room(const double* state, const Eigen::Vector3d& point, const Eigen::Vector3d& trail,
-              std::size_t blocker) const;
+  /// How near the stand-off at `point` (and the wrist behind it) the other objects stand.
+  double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker) const;
 
   const physics::PlanningContext& context_;
   Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
@@ -75,13 +74,12 @@ class ClearingPush {
   /// The corridor push's posture and approach, pitched by the corridor's pitch.
   Eigen::Matrix3d steepOrientation_ = Eigen::Matrix3d::Identity();
   Eigen::Vector3d steepFingers_ = Eigen::Vector3d::Zero();
-  /// A movable object's footprint on the table at the start: its horizontal bounds, and where
-  /// its body was then (a footprint moves with its body).
+  /// A movable object's bounds at the start, and where its body was then (the footprint moves
+  /// with its body).
   struct Footprint {
     std::size_t body;
-    Eigen::Vector2d start;
-    Eigen::Vector2d min;
-    Eigen::Vector2d max;
+    Eigen::Vector3d start;
+    Eigen::AlignedBox3d bounds;
   };
   std::vector<Footprint> footprints_;
   double behind_ = 0.0;

@@ -122,8 +122,8 @@ class MotionEvaluator {
   bool displacementWithinLimit(const double* start, const double* end) const;
   /// The first object that moved more than d between the two states, if any.
   std::optional<std::size_t> movedTooFar(const double* start, const double* end) const;
-  /// Adds a particle's failure, if it failed, to particleFailures().
-  void tallyFailure(const ParticleJob& job, const ParticleResult& result);
+  /// Adds the verdict's last particle (run as `job`) to particleFailures(), if it failed.
+  void tallyLastFailure(const ParticleJob& job, const ParticleVerdict& verdict);
   /// A nominal run as a job: the mean contact parameters, the exact control, every state kept.
   ParticleJob nominalJob(const double* start, const NominalMotion& motion, bool throughGoal) const;
   NominalRun nominalRun(const double* start, ParticleResult&& result) const;
