@@ -26,6 +26,9 @@ constexpr double kBelowCentre = 0.015;  // m
 // The stand-off is reached from this high above the push: lowered onto it, the gripper
 // does not sweep through the objects beside it.
 constexpr double kAbove = 0.10;  // m
+// Between pushes the gripper travels this high above the tallest movable object's top: its
+// fingertips, the lowest point of a gripper pointing down, pass over the cans.
+constexpr double kOverTops = 0.04;  // m
 // The goal link is at the fingertips; the fingers' middle, which should meet the object,
 // lies this far back along the approach.
 constexpr double kFingerMiddle = 0.025;  // m
@@ -53,6 +56,7 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch
   across_.normalize();
   halfWidth_ = 0.5 * spec.freeSpace->size.dot(spec.levelAxis->normalized().cwiseAbs());
   lowest_ = context.problem().workspace.min().z() + kFloorMargin;
+  highest_ = context.problem().workspace.max().z() - kFloorMargin;
   const Eigen::AngleAxisd pitchDown(-pitch, across_);
   orientation_ = pitchDown * context.goal().nominalGoalPose().linear();
   fingers_ = pitchDown * Eigen::Vector3d(-back_);
@@ -67,6 +71,7 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch
         context.problem().objects.at(static_cast<std::size_t>(body.objectIndex)));
     footprints_.push_back(
         {b, physics::WorldLayout::position(context.startState().data(), b), bounds});
+    tops_ = std::max(tops_, bounds.max().z());
   }
 }
 
@@ -136,8 +141,19 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const double pushLength = (end - start).norm();
   if (std::hypot(fromStart.x(), fromStart.y()) <= kOnLine)
     return Step{start, turn, fromStart.norm() + pushLength + endToGoal, false};
-  const Eigen::Vector3d above = start + kAbove * Eigen::Vector3d::UnitZ();
-  return Step{above, turn, (above - link).norm() + kAbove + pushLength + endToGoal, false};
+  // Above the stand-off, high enough to pass over the cans; from a push that ended low, up
+  // first: a straight move from there to the next stand-off sweeps through the tops of the cans
+  // between (it tipped can1 on kuka_clutter_20, on the way from can3's push to can1's).
+  const Eigen::Vector3d above(start.x(), start.y(),
+                              std::min(highest_, std::max(start.z() + kAbove, tops_ + kOverTops)));
+  const double descent = above.z() - start.z();
+  if (link.z() < above.z() - kOnLine) {
+    const Eigen::Vector3d lifted(link.x(), link.y(), above.z());
+    return Step{lifted, turn,
+                (lifted - link).norm() + (above - lifted).norm() + descent + pushLength + endToGoal,
+                false};
+  }
+  return Step{above, turn, (above - link).norm() + descent + pushLength + endToGoal, false};
 }
 
 double ClearingPush::room(const double* state, const Eigen::Vector3d& point,

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -139,13 +140,15 @@ TEST(ClearingPushTest, ClearsTheCorridorBehindThePreGraspFirstFurthestBack) {
 TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   // The same scene, the real physics: the gripper steered by inverse kinematics along the
   // clearing's waypoints, motion after motion, clears can3 from the corridor and can1 from the
-  // free space, each motion valid all along.
+  // free space, each motion valid all along, and no can tipped on the way.
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
   physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
   MotionEvaluator evaluator(context, 0.0);
   const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2);
   const ClearingPush clearing(context, kPitch, 0.2, 1.2);
   std::vector<double> state = context.startState();
+  double leastUpright = 1.0;  // the cosine of the largest tilt of any can, after any motion
+  std::string mostTilted;
   int motions = 0;
   for (; motions < 16 && clearing.next(state.data()); ++motions) {
     const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
@@ -154,7 +157,19 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
         evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
     ASSERT_EQ(run.steps, steered->steps) << "motion " << motions << " broke a rule";
     state = run.end;
+    for (std::size_t b = 0; b < context.layout().bodies.size(); ++b) {
+      if (context.layout().bodies[b].role != physics::BodyRole::Movable) continue;
+      const double upright =
+          (physics::WorldLayout::orientation(state.data(), b) * Eigen::Vector3d::UnitZ()).z();
+      if (upright < leastUpright) {
+        leastUpright = upright;
+        mostTilted = context.layout().bodies[b].name;
+      }
+    }
   }
+  // Every can stays upright: from the end of can3's push, low, the gripper rises before it
+  // goes to can1's stand-off (straight there, its fingers tipped can1 by 6.5 degrees).
+  EXPECT_GT(leastUpright, std::cos(4.0 * M_PI / 180.0)) << mostTilted << " tilted";
   EXPECT_FALSE(clearing.next(state.data()).has_value()) << "not clear after " << motions;
   EXPECT_FALSE(context.goal().freeSpaceBlocker(state.data()).has_value());
   EXPECT_EQ(steering.jacobianAims(), 0u);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -14,9 +15,10 @@ namespace kautham::planners {
 /// paper): a push that moves the object sideways out of the approach, low on the object.
 ///
 /// The gripper first goes above a stand-off point beside the object (on the side with more
-/// room), down to the push height, then sweeps across the approach through the object's
-/// centre. It points down a little all the while: held level that low, the wrist (behind
-/// the gripper, and wider) would drag on the table. The push is low (1.5 cm below the object's
+/// room; from a push that ended low, straight up first, so that it passes over the cans),
+/// down to the push height, then sweeps across the approach through the object's centre. It
+/// points down a little all the while: held level that low, the wrist (behind the gripper, and
+/// wider) would drag on the table. The push is low (1.5 cm below the object's
 /// centre, 4.6 cm up a 12.2 cm can) because a can pushed at a side pre-grasp's height, near its
 /// top, tips over before it slides: it slides only when pushed below radius / friction (6.6 cm for
 /// a can with friction 0.5).
@@ -66,7 +68,9 @@ class ClearingPush {
   Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
   Eigen::Vector3d across_ = Eigen::Vector3d::Zero();  ///< level, across the approach
   double halfWidth_ = 0.0;                            ///< of the free space, across the approach
-  double lowest_ = 0.0;  ///< the lowest the goal link may go (workspace floor and margin)
+  double lowest_ = 0.0;   ///< the lowest the goal link may go (workspace floor and margin)
+  double highest_ = 0.0;  ///< the highest it may go (workspace ceiling and margin)
+  double tops_ = -std::numeric_limits<double>::infinity();  ///< the tallest movable's top, at home
   /// The push's posture: the goal's orientation pitched down, and its approach (where the
   /// fingers point).
   Eigen::Matrix3d orientation_ = Eigen::Matrix3d::Identity();
