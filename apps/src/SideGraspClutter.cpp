@@ -144,7 +144,10 @@ const std::vector<SideSetup>& sideSetups() {
        "      <!-- the corridor cleared up to 15 cm behind the pre-grasp: pushing a can 20 cm\n"
        "           back, near the YuMi's body, takes the gripper out of the workspace\n"
        "           (docs/benchmarks.md, session 13) -->\n"
-       "      <Parameter name=\"clear_behind\">0.15</Parameter>\n"},
+       "      <Parameter name=\"clear_behind\">0.15</Parameter>\n"
+       "      <!-- the goal steering straight at the pre-grasp, without lining up behind it:\n"
+       "           lined up, yumi_clutter_20 solved 0 of 10 (docs/benchmarks.md, session 14) -->\n"
+       "      <Parameter name=\"final_approach\">0</Parameter>\n"},
   };
   return setups;
 }

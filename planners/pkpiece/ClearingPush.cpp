@@ -46,6 +46,17 @@ constexpr double kLaterPush = 0.5;  // m
 ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch, double behind,
                            double corridorPitch)
     : context_(context), behind_(behind) {
+  const physics::WorldLayout& layout = context.layout();
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    const physics::BodyInfo& body = layout.bodies[b];
+    if (body.role != physics::BodyRole::Movable || body.objectIndex < 0) continue;
+    const Eigen::AlignedBox3d bounds = core::boundsAtHome(
+        context.problem().objects.at(static_cast<std::size_t>(body.objectIndex)));
+    footprints_.push_back(
+        {b, physics::WorldLayout::position(context.startState().data(), b), bounds});
+    travelHeight_ = std::max(travelHeight_, bounds.max().z() + kOverTops);
+  }
+  travelHeight_ = std::min(travelHeight_, context.problem().workspace.max().z() - kFloorMargin);
   const physics::GoalSpec& spec = context.goal().spec();
   if (!spec.freeSpace || !spec.approach || !spec.levelAxis) return;
   back_ = -*spec.approach;
@@ -56,23 +67,12 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch
   across_.normalize();
   halfWidth_ = 0.5 * spec.freeSpace->size.dot(spec.levelAxis->normalized().cwiseAbs());
   lowest_ = context.problem().workspace.min().z() + kFloorMargin;
-  highest_ = context.problem().workspace.max().z() - kFloorMargin;
   const Eigen::AngleAxisd pitchDown(-pitch, across_);
   orientation_ = pitchDown * context.goal().nominalGoalPose().linear();
   fingers_ = pitchDown * Eigen::Vector3d(-back_);
   const Eigen::AngleAxisd steepDown(-std::max(pitch, corridorPitch), across_);
   steepOrientation_ = steepDown * context.goal().nominalGoalPose().linear();
   steepFingers_ = steepDown * Eigen::Vector3d(-back_);
-  const physics::WorldLayout& layout = context.layout();
-  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
-    const physics::BodyInfo& body = layout.bodies[b];
-    if (body.role != physics::BodyRole::Movable || body.objectIndex < 0) continue;
-    const Eigen::AlignedBox3d bounds = core::boundsAtHome(
-        context.problem().objects.at(static_cast<std::size_t>(body.objectIndex)));
-    footprints_.push_back(
-        {b, physics::WorldLayout::position(context.startState().data(), b), bounds});
-    tops_ = std::max(tops_, bounds.max().z());
-  }
 }
 
 std::optional<std::size_t> ClearingPush::corridorBlocker(const double* state) const {
@@ -144,8 +144,7 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   // Above the stand-off, high enough to pass over the cans; from a push that ended low, up
   // first: a straight move from there to the next stand-off sweeps through the tops of the cans
   // between (it tipped can1 on kuka_clutter_20, on the way from can3's push to can1's).
-  const Eigen::Vector3d above(start.x(), start.y(),
-                              std::min(highest_, std::max(start.z() + kAbove, tops_ + kOverTops)));
+  const Eigen::Vector3d above(start.x(), start.y(), std::max(start.z() + kAbove, travelHeight_));
   const double descent = above.z() - start.z();
   if (link.z() < above.z() - kOnLine) {
     const Eigen::Vector3d lifted(link.x(), link.y(), above.z());

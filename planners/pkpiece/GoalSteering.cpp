@@ -21,6 +21,15 @@ constexpr double kMaxStride = 0.1;  // m
 // object upright and below the interaction's speed limit, where the joints' full speed flings it.
 constexpr double kMoveSpeed = 0.3;  // m/s
 constexpr double kPushSpeed = 0.1;  // m/s
+// The link counts as on the approach line behind the goal point within this of it: about
+// the control noise's drift over a move, well inside the goal's tolerance.
+constexpr double kOnApproachLine = 0.01;  // m
+// The link counts as over the line-up point, to be lowered onto it, within this (a lowering
+// drifts by about a centimetre).
+constexpr double kOverLineUp = 0.03;  // m
+// An approach less steep than this (the sine of its angle below horizontal) comes in from the
+// side, between the objects on the table.
+constexpr double kSideApproach = 0.5;
 
 /// The rotation vector (axis times angle) of a rotation matrix.
 Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
@@ -31,11 +40,12 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
                            bool clearing, double pushPitch, bool kinematic, double clearBehind,
-                           double corridorPitch)
+                           double corridorPitch, double finalApproach)
     : context_(context),
       evaluator_(evaluator),
       clearing_(context, pushPitch, clearBehind, corridorPitch),
-      clearingOn_(clearing) {
+      clearingOn_(clearing),
+      finalApproach_(finalApproach) {
   if (kinematic) kinematic_.emplace(context);
 }
 
@@ -56,7 +66,38 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
       return steer(start, step->waypoint, step->orientation,
                    step->pushing ? kPushSpeed : kMoveSpeed);
   if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
+  if (const std::optional<Aim> lineUp = lineUpAim(start))
+    return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
   return steer(start, context_.goal().position(), context_.goal().nominalGoalPose().linear(), 0.0);
+}
+
+std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) const {
+  const physics::GoalSpec& spec = context_.goal().spec();
+  if (finalApproach_ <= 0.0 || !spec.approach) return std::nullopt;
+  const Eigen::Vector3d approach = spec.approach->normalized();
+  const Eigen::Vector3d goal = context_.goal().position();
+  const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
+  const Eigen::Vector3d fromGoal = link - goal;
+  const double along = fromGoal.dot(approach);  // negative behind the goal point
+  const double offLine = (fromGoal - along * approach).norm();
+  // On the line, behind the goal point and no further back than the line-up point (give or
+  // take the same margin): straight in from here.
+  if (offLine <= kOnApproachLine && along <= kOnApproachLine &&
+      along >= -finalApproach_ - kOnApproachLine)
+    return std::nullopt;
+  const Eigen::Matrix3d& turn = context_.goal().nominalGoalPose().linear();
+  const Eigen::Vector3d lineUp = goal - finalApproach_ * approach;
+  // A side approach among the cans: over them, turned, then down onto the line-up point. From a
+  // low push, the gripper rises first as it is turned (pitched down); turned on the way, its
+  // fingers swung into the cans and the target.
+  const bool side = std::abs(approach.z()) < kSideApproach;
+  const double travel = std::max(lineUp.z(), clearing_.travelHeight());
+  const Eigen::Vector3d toLineUp = lineUp - link;
+  if (!side || std::hypot(toLineUp.x(), toLineUp.y()) <= kOverLineUp) return Aim{lineUp, turn};
+  if (link.z() < travel - kOnApproachLine)
+    return Aim{Eigen::Vector3d(link.x(), link.y(), travel),
+               context_.layout().goalLinkOrientation(state)};
+  return Aim{Eigen::Vector3d(lineUp.x(), lineUp.y(), travel), turn};
 }
 
 std::optional<Eigen::MatrixXd> GoalSteering::probedJacobian(const double* start) const {

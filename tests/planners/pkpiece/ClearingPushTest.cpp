@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -173,6 +174,55 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   EXPECT_FALSE(clearing.next(state.data()).has_value()) << "not clear after " << motions;
   EXPECT_FALSE(context.goal().freeSpaceBlocker(state.data()).has_value());
   EXPECT_EQ(steering.jacobianAims(), 0u);
+}
+
+}  // namespace
+}  // namespace kautham::planners
+
+namespace kautham::planners {
+namespace {
+
+/// kuka_clutter_20 steered by GoalSteering (with `finalApproach`) until the goal is reached:
+/// how far off the approach line the goal link strayed during the last motion, the one that
+/// reached the goal (infinity when none did within 24 motions or a motion broke a rule).
+double offLineOfTheLastMove(double finalApproach) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  MotionEvaluator evaluator(context, 0.0);
+  const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2, finalApproach);
+  const physics::WorkspaceGoal& goal = context.goal();
+  const Eigen::Vector3d approach = goal.spec().approach->normalized();
+  std::vector<double> state = context.startState();
+  for (int motion = 0; motion < 24; ++motion) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
+    if (!steered) return std::numeric_limits<double>::infinity();
+    const NominalRun run =
+        evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
+    if (run.steps < steered->steps && !run.reachedGoal)
+      return std::numeric_limits<double>::infinity();
+    if (run.reachedGoal) {
+      double offLine = 0.0;
+      for (const std::vector<double>& s : run.states) {
+        const Eigen::Vector3d fromGoal =
+            context.layout().goalLinkPosition(s.data()) - goal.position();
+        offLine = std::max(offLine, (fromGoal - fromGoal.dot(approach) * approach).norm());
+      }
+      return offLine;
+    }
+    state = run.end;
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+TEST(GoalSteeringTest, TheLastMoveGoesStraightInAlongTheApproach) {
+  // Once the clearing is done, the link rises, lines up 5 cm behind the goal point, turned as
+  // the goal asks, and goes straight in: it stays within 1.5 cm of the approach line all the
+  // way in. Steered straight at the goal point from the end of the last push (low, pitched
+  // down), the turning gripper swept its fingers forwards and broke a rule on the way.
+  const double lined = offLineOfTheLastMove(0.05);
+  const double direct = offLineOfTheLastMove(0.0);
+  EXPECT_LT(lined, 0.015);
+  EXPECT_GT(direct, 0.03);
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -53,6 +52,9 @@ class ClearingPush {
   /// None when the free space and the corridor are clear, or the goal has no free space or
   /// side approach.
   std::optional<Step> next(const double* state) const;
+  /// How high the goal link travels between pushes: above the tallest movable object's top (at
+  /// its home), within the workspace.
+  double travelHeight() const { return travelHeight_; }
   /// The movable object in the corridor behind the goal point that is pushed first (the one
   /// furthest back), if any.
   std::optional<std::size_t> corridorBlocker(const double* state) const;
@@ -68,9 +70,8 @@ class ClearingPush {
   Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
   Eigen::Vector3d across_ = Eigen::Vector3d::Zero();  ///< level, across the approach
   double halfWidth_ = 0.0;                            ///< of the free space, across the approach
-  double lowest_ = 0.0;   ///< the lowest the goal link may go (workspace floor and margin)
-  double highest_ = 0.0;  ///< the highest it may go (workspace ceiling and margin)
-  double tops_ = -std::numeric_limits<double>::infinity();  ///< the tallest movable's top, at home
+  double lowest_ = 0.0;        ///< the lowest the goal link may go (workspace floor and margin)
+  double travelHeight_ = 0.0;  ///< see travelHeight()
   /// The push's posture: the goal's orientation pitched down, and its approach (where the
   /// fingers point).
   Eigen::Matrix3d orientation_ = Eigen::Matrix3d::Identity();

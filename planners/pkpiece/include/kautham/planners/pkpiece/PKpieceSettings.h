@@ -55,6 +55,9 @@ struct PKpieceSettings {
   /// How far the corridor's pushes point the gripper down (rad), so the wrist passes over the
   /// objects behind.
   double corridorPitch;
+  /// The goal steering's last move goes straight in along the approach from this far behind
+  /// the goal point (m; 0: straight at the goal point from wherever the link is).
+  double finalApproach;
   /// Before a plan ends the search, it is executed this many times open loop in sampled
   /// worlds (PlanVerifier); it ends the search only if at least goalConfidence of them
   /// succeed, and as many fresh executions then give its estimated success. 0: the
@@ -184,6 +187,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0.0, 1.5)
                    .describe("how far the corridor's pushes point the gripper down (rad), so "
                              "the wrist passes over the objects behind"))
+          .add(&S::finalApproach,
+               Parameter::real("final_approach")
+                   .byDefault(0.05)
+                   .range(0.0, 0.5)
+                   .describe("the goal steering lines the gripper up this far behind the goal "
+                             "point (m), turned as the goal asks, and then goes straight in "
+                             "along the approach (0: straight at the goal point)"))
           .add(&S::verifyRuns,
                Parameter::integer("verify_runs")
                    .byDefault(50)
