@@ -24,9 +24,10 @@ constexpr double kPushSpeed = 0.1;  // m/s
 // The link counts as on the approach line behind the goal point within this of it: about
 // the control noise's drift over a move, well inside the goal's tolerance.
 constexpr double kOnApproachLine = 0.01;  // m
-// The link counts as over the line-up point, to be lowered onto it, within this (a lowering
-// drifts by about a centimetre).
+// Within this of the line-up point (horizontally) a low link goes on to it without rising.
 constexpr double kOverLineUp = 0.03;  // m
+// This far above the travel height the link is high above the cans, not near them after a push.
+constexpr double kHighAbove = 0.05;  // m
 // An approach less steep than this (the sine of its angle below horizontal) comes in from the
 // side, between the objects on the table.
 constexpr double kSideApproach = 0.5;
@@ -87,17 +88,20 @@ std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) co
     return std::nullopt;
   const Eigen::Matrix3d& turn = context_.goal().nominalGoalPose().linear();
   const Eigen::Vector3d lineUp = goal - finalApproach_ * approach;
-  // A side approach among the cans: over them, turned, then down onto the line-up point. From a
-  // low push, the gripper rises first as it is turned (pitched down); turned on the way, its
-  // fingers swung into the cans and the target.
+  // A side approach among the cans, from a push that ended low: up first, still turned as the
+  // push left it, to the travel height above the cans; turned on the way, the fingers swung into
+  // the cans and the target. From there, straight to the line-up point. From high above the
+  // cans (the arm's start), straight at the goal point as before: the arm at the line-up point
+  // pressed its forearm on kuka_clutter_5's can3, 26 cm behind the pre-grasp, and tipped it.
   const bool side = std::abs(approach.z()) < kSideApproach;
   const double travel = std::max(lineUp.z(), clearing_.travelHeight());
+  if (side && link.z() > travel + kHighAbove) return std::nullopt;
   const Eigen::Vector3d toLineUp = lineUp - link;
-  if (!side || std::hypot(toLineUp.x(), toLineUp.y()) <= kOverLineUp) return Aim{lineUp, turn};
-  if (link.z() < travel - kOnApproachLine)
+  if (side && link.z() < travel - kOnApproachLine &&
+      std::hypot(toLineUp.x(), toLineUp.y()) > kOverLineUp)
     return Aim{Eigen::Vector3d(link.x(), link.y(), travel),
                context_.layout().goalLinkOrientation(state)};
-  return Aim{Eigen::Vector3d(lineUp.x(), lineUp.y(), travel), turn};
+  return Aim{lineUp, turn};
 }
 
 std::optional<Eigen::MatrixXd> GoalSteering::probedJacobian(const double* start) const {

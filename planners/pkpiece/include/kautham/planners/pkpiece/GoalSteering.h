@@ -54,9 +54,9 @@ class GoalSteering {
     Eigen::Matrix3d orientation;
   };
   /// Where the link heads to line up for the straight last move, when it is not on that line
-  /// yet: the line-up point on the approach line, `finalApproach` behind the goal point; for
-  /// a side approach, up first (as it is turned) to ClearingPush::travelHeight(), over the
-  /// line-up point turned as the goal asks, and down onto it. None without an approach.
+  /// yet: the line-up point on the approach line, `finalApproach` behind the goal point,
+  /// turned as the goal asks; for a side approach from below ClearingPush::travelHeight(), up
+  /// to that height first. None without an approach.
   std::optional<Aim> lineUpAim(const double* state) const;
   /// How far `state` is from the goal, for choosing what the goal bias grows: the search
   /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
