@@ -55,8 +55,10 @@ class GoalSteering {
   };
   /// Where the link heads to line up for the straight last move, when it is not on that line
   /// yet: the line-up point on the approach line, `finalApproach` behind the goal point,
-  /// turned as the goal asks; for a side approach from below ClearingPush::travelHeight(), up
-  /// to that height first. None without an approach.
+  /// turned as the goal asks. For a side approach near the cans: up to
+  /// ClearingPush::travelHeight() first (as it is turned), over the line-up point, and down
+  /// onto it; from high above them, none (straight at the goal point). None without an
+  /// approach.
   std::optional<Aim> lineUpAim(const double* state) const;
   /// How far `state` is from the goal, for choosing what the goal bias grows: the search
   /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
