@@ -137,22 +137,26 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const double offLine = (fromObject - along * direction).norm();
   if (along <= 0.0 && offLine <= kOnLine)
     return Step{end, turn, (end - link).norm() + endToGoal, true};
-  const Eigen::Vector3d fromStart = link - start;
-  const double pushLength = (end - start).norm();
-  if (std::hypot(fromStart.x(), fromStart.y()) <= kOnLine)
-    return Step{start, turn, fromStart.norm() + pushLength + endToGoal, false};
-  // Above the stand-off, high enough to pass over the cans; from a push that ended low, up
-  // first: a straight move from there to the next stand-off sweeps through the tops of the cans
-  // between (it tipped can1 on kuka_clutter_20, on the way from can3's push to can1's).
-  const Eigen::Vector3d above(start.x(), start.y(), std::max(start.z() + kAbove, travelHeight_));
-  const double descent = above.z() - start.z();
-  if (link.z() < above.z() - kOnLine) {
-    const Eigen::Vector3d lifted(link.x(), link.y(), above.z());
-    return Step{lifted, turn,
-                (lifted - link).norm() + (above - lifted).norm() + descent + pushLength + endToGoal,
-                false};
+  // To the stand-off over the cans, from above it (high enough to pass over them); from a push
+  // that ended low, up first: a straight move from there to the next stand-off sweeps through
+  // the tops of the cans between (it tipped can1 on kuka_clutter_20, on the way from can3's
+  // push to can1's).
+  const Transfer transfer =
+      transferOver(link, start, std::max(start.z() + kAbove, travelHeight_), kOnLine, kOnLine);
+  return Step{transfer.waypoint, turn, transfer.length + (end - start).norm() + endToGoal, false};
+}
+
+Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target, double height,
+                      double over, double below) {
+  if (std::hypot(link.x() - target.x(), link.y() - target.y()) <= over)
+    return {Transfer::Leg::Down, target, (target - link).norm()};
+  const Eigen::Vector3d above(target.x(), target.y(), height);
+  const double descent = height - target.z();
+  if (link.z() < height - below) {
+    const Eigen::Vector3d lifted(link.x(), link.y(), height);
+    return {Transfer::Leg::Up, lifted, (lifted - link).norm() + (above - lifted).norm() + descent};
   }
-  return Step{above, turn, (above - link).norm() + descent + pushLength + endToGoal, false};
+  return {Transfer::Leg::Across, above, (above - link).norm() + descent};
 }
 
 double ClearingPush::room(const double* state, const Eigen::Vector3d& point,

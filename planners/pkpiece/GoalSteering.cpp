@@ -100,12 +100,10 @@ std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) co
   if (!side) return Aim{lineUp, turn};
   const double travel = std::max(lineUp.z(), clearing_.travelHeight());
   if (link.z() > travel + kHighAbove) return std::nullopt;
-  const Eigen::Vector3d toLineUp = lineUp - link;
-  if (std::hypot(toLineUp.x(), toLineUp.y()) <= kOverLineUp) return Aim{lineUp, turn};
-  if (link.z() < travel - kOnApproachLine)
-    return Aim{Eigen::Vector3d(link.x(), link.y(), travel),
-               context_.layout().goalLinkOrientation(state)};
-  return Aim{Eigen::Vector3d(lineUp.x(), lineUp.y(), travel), turn};
+  const Transfer transfer = transferOver(link, lineUp, travel, kOverLineUp, kOnApproachLine);
+  if (transfer.leg == Transfer::Leg::Up)
+    return Aim{transfer.waypoint, context_.layout().goalLinkOrientation(state)};
+  return Aim{transfer.waypoint, turn};
 }
 
 std::optional<Eigen::MatrixXd> GoalSteering::probedJacobian(const double* start) const {

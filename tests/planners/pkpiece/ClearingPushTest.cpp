@@ -176,12 +176,6 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   EXPECT_EQ(steering.jacobianAims(), 0u);
 }
 
-}  // namespace
-}  // namespace kautham::planners
-
-namespace kautham::planners {
-namespace {
-
 /// kuka_clutter_20 steered by GoalSteering (with `finalApproach`) until the goal is reached:
 /// how far off the approach line the goal link strayed during the last motion, the one that
 /// reached the goal (infinity when none did within 24 motions or a motion broke a rule).

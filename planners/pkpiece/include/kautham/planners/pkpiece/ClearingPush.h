@@ -10,6 +10,18 @@
 
 namespace kautham::planners {
 
+/// A move of the goal link to `target` over the objects on the table, at `height` (m): down
+/// onto the target once within `over` of it horizontally; otherwise straight up first while
+/// more than `below` under `height`, then across at that height to above the target.
+struct Transfer {
+  enum class Leg { Up, Across, Down };
+  Leg leg;
+  Eigen::Vector3d waypoint;  ///< where the link heads next
+  double length;             ///< m from the link through the waypoint and on to the target
+};
+Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target, double height,
+                      double over, double below);
+
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
 /// paper): a push that moves the object sideways out of the approach, low on the object.
 ///

@@ -48,6 +48,16 @@ class GoalSteering {
   /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
   /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.
   std::optional<NominalMotion> towardsGoal(const double* start) const;
+  /// How far `state` is from the goal, for choosing what the goal bias grows: the search
+  /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
+  /// what remains of the clearing push.
+  double rankDistance(const double* state) const;
+  /// Motions aimed by the Jacobian (inverse kinematics found no pose, or `kinematic` is off)
+  /// since construction or resetCount().
+  std::uint64_t jacobianAims() const { return jacobianAims_; }
+  void resetCount() { jacobianAims_ = 0; }
+
+ private:
   /// Where the goal link heads next, and turned how.
   struct Aim {
     Eigen::Vector3d position;
@@ -60,16 +70,6 @@ class GoalSteering {
   /// onto it; from high above them, none (straight at the goal point). None without an
   /// approach.
   std::optional<Aim> lineUpAim(const double* state) const;
-  /// How far `state` is from the goal, for choosing what the goal bias grows: the search
-  /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
-  /// what remains of the clearing push.
-  double rankDistance(const double* state) const;
-  /// Motions aimed by the Jacobian (inverse kinematics found no pose, or `kinematic` is off)
-  /// since construction or resetCount().
-  std::uint64_t jacobianAims() const { return jacobianAims_; }
-  void resetCount() { jacobianAims_ = 0; }
-
- private:
   /// A control that drives the goal link straight at `target` and turns it towards
   /// `orientation` (as far as the goal cares about turns); with `maxSpeed` > 0 (m/s) no
   /// faster than that and at most a stride far.
