@@ -107,6 +107,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(verifications_); });
   addPlannerProgressProperty("verification_rejections INTEGER",
                              [this] { return std::to_string(verificationRejections_); });
+  // Sampled executions run by the verifications and the estimate (verify_runs each at most).
+  addPlannerProgressProperty("verification_runs INTEGER",
+                             [this] { return std::to_string(verificationRuns_); });
   // Goal-biased expansions: candidates aimed by the goal steering, those valid from their first
   // step, and those kept (they compete with the random ones by belief).
   addPlannerProgressProperty("steered_candidates INTEGER",
@@ -163,6 +166,7 @@ void PKpiece::clear() {
   solutionConfidence_.reset();
   verifications_ = 0;
   verificationRejections_ = 0;
+  verificationRuns_ = 0;
 }
 
 std::uint64_t PKpiece::nextStreamSeed() {
@@ -574,10 +578,13 @@ bool PKpiece::passesVerification(Motion* end) {
   ++verifications_;
   const VerificationResult result =
       verifier_.verify(controls, settings_.verifyRuns, settings_.goalConfidence);
+  verificationRuns_ += result.runs;
   if (result.passed) {
     // The first plan to pass is, among all those tried, one whose runs went well: fresh
     // runs, whatever they find, give its estimated success without that bias.
-    end->successEstimate = verifier_.verify(controls, settings_.verifyRuns, 0.0).rate();
+    const VerificationResult fresh = verifier_.measure(controls, settings_.verifyRuns);
+    verificationRuns_ += fresh.runs;
+    end->successEstimate = fresh.rate();
     return true;
   }
   ++verificationRejections_;

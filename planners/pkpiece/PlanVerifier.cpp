@@ -8,8 +8,8 @@
 namespace kautham::planners {
 
 namespace {
-// Runs handed out at once per process: enough to keep every process busy between two
-// looks at the count, few enough that an early stop wastes little.
+// Runs handed out at once per process, at most: enough to keep every process busy between
+// two looks at the count.
 constexpr unsigned kRunsPerProcess = 4;
 }  // namespace
 
@@ -18,29 +18,46 @@ PlanVerifier::PlanVerifier(MotionEvaluator& evaluator, std::uint64_t seedBase)
 
 VerificationResult PlanVerifier::verify(const std::vector<physics::ControlStep>& controls,
                                         unsigned runs, double threshold) {
+  // The fewest successes that reach `threshold` over all the runs, and the most failures
+  // that still leave it reachable: the count is decided as soon as either is reached.
+  const auto needed = static_cast<unsigned>(std::ceil(runs * threshold - 1e-9));
+  const auto allowed = static_cast<unsigned>(std::floor(runs * (1.0 - threshold) + 1e-9));
+  VerificationResult result = count(controls, runs, needed, allowed);
+  result.passed = result.successes >= needed;
+  return result;
+}
+
+VerificationResult PlanVerifier::measure(const std::vector<physics::ControlStep>& controls,
+                                         unsigned runs) {
+  // Neither more successes than runs nor more failures than runs: nothing decides early.
+  VerificationResult result = count(controls, runs, runs + 1, runs);
+  result.passed = true;
+  return result;
+}
+
+VerificationResult PlanVerifier::count(const std::vector<physics::ControlStep>& controls,
+                                       unsigned runs, unsigned needed, unsigned allowed) {
   VerificationResult result;
-  // The most failures that still leave `threshold` reachable over all the runs.
-  const double allowed = std::floor(runs * (1.0 - threshold) + 1e-9);
-  // One process: one run at a time, so a rejected plan costs no run beyond the deciding one.
   const unsigned processes = evaluator_.threads();
   const unsigned batch = processes > 1 ? kRunsPerProcess * processes : 1;
   unsigned failures = 0;
-  while (result.runs < runs) {
-    std::vector<std::uint64_t> seeds(std::min(batch, runs - result.runs));
+  while (result.runs < runs && result.successes < needed && failures <= allowed) {
+    // No batch goes past the earliest run that could decide the count: every run handed out
+    // is counted, so the work and the streams drawn do not depend on how many processes ran
+    // them, and an early stop wastes no run.
+    const unsigned decidable = std::min(needed - result.successes, allowed + 1 - failures);
+    std::vector<std::uint64_t> seeds(std::min({batch, runs - result.runs, decidable}));
     for (std::size_t i = 0; i < seeds.size(); ++i)
       seeds[i] = core::runSeed(seedBase_, nextRun_ + i);
-    // Counted in order up to the deciding failure; runs past it are not counted, and their
-    // streams are drawn again by the next verification, as a serial run would.
     for (const bool reached : evaluator_.runExecutions(controls, seeds)) {
       ++nextRun_;
       ++result.runs;
       if (reached)
         ++result.successes;
-      else if (++failures > allowed)
-        return result;
+      else
+        ++failures;
     }
   }
-  result.passed = result.rate() >= threshold;
   return result;
 }
 

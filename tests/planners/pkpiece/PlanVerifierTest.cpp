@@ -1,5 +1,5 @@
 // PlanVerifier on a real problem: its runs are physics::execute's sampled executions, one
-// random stream each, never repeated, and it stops once the threshold is out of reach; with
+// random stream each, never repeated, and it stops once the verdict is sure either way; with
 // worker processes it counts the same runs.
 
 #include <gtest/gtest.h>
@@ -49,8 +49,8 @@ TEST(PlanVerifierTest, RunsSampledExecutionsOnFreshStreamsEachTime) {
   const PlanOutcome plan = solve(scene.context, scene.request);
   ASSERT_TRUE(plan.solved);
   PlanVerifier verifier(scene.evaluator, kSeedBase);
-  const VerificationResult first = verifier.verify(plan.controls, 12, 0.0);
-  const VerificationResult second = verifier.verify(plan.controls, 12, 0.0);
+  const VerificationResult first = verifier.measure(plan.controls, 12);
+  const VerificationResult second = verifier.measure(plan.controls, 12);
   EXPECT_EQ(first.runs, 12u);
   EXPECT_TRUE(first.passed);
   EXPECT_EQ(first.successes, successesOfStreams(scene.context, plan.controls, 0, 12));
@@ -72,10 +72,30 @@ TEST(PlanVerifierTest, StopsAtTheFailureThatPutsTheThresholdOutOfReach) {
   EXPECT_EQ(strict.runs, 3u);
   EXPECT_EQ(strict.successes, 0u);
   EXPECT_EQ(strict.rate(), 0.0);
-  // With no threshold it runs them all, and a rate of 0 passes 0.
-  const VerificationResult all = verifier.verify(idle, 10, 0.0);
+  // A measurement runs them all.
+  const VerificationResult all = verifier.measure(idle, 10);
   EXPECT_EQ(all.runs, 10u);
-  EXPECT_TRUE(all.passed);
+  EXPECT_EQ(all.successes, 0u);
+}
+
+TEST(PlanVerifierTest, StopsAtTheSuccessThatMakesTheThresholdSure) {
+  Scene scene;
+  const PlanOutcome plan = solve(scene.context, scene.request);
+  ASSERT_TRUE(plan.solved);
+  // Which of the first 12 streams the plan succeeds in, as validate runs them.
+  std::vector<unsigned> successAt;
+  for (unsigned i = 0; i < 12; ++i)
+    if (successesOfStreams(scene.context, plan.controls, i, 1) == 1) successAt.push_back(i);
+  ASSERT_GE(successAt.size(), 2u) << "the planner's plan should work in 2 of 12 runs";
+  PlanVerifier verifier(scene.evaluator, kSeedBase);
+  // 12 runs at 0.15: the second success makes the rate over all 12 at least 0.15.
+  const VerificationResult early = verifier.verify(plan.controls, 12, 0.15);
+  EXPECT_TRUE(early.passed);
+  EXPECT_EQ(early.successes, 2u);
+  EXPECT_EQ(early.runs, successAt[1] + 1);
+  // The runs it did not need are drawn by the next count, as if it had stopped there.
+  const VerificationResult next = verifier.measure(plan.controls, 1);
+  EXPECT_EQ(next.successes, successesOfStreams(scene.context, plan.controls, early.runs, 1));
 }
 
 /// Runs spread over worker processes are counted as one after another: the same verdict, the
@@ -89,12 +109,13 @@ TEST(PlanVerifierTest, WorkerProcessesCountTheSameRuns) {
     scene.evaluator.useWorkers(threads);
     PlanVerifier verifier(scene.evaluator, kSeedBase);
     auto& results = byThreads[threads - 1];
-    results.push_back(verifier.verify(plan.controls, 11, 0.0));
+    results.push_back(verifier.measure(plan.controls, 11));
     results.push_back(verifier.verify(plan.controls, 20, 0.9));  // stops early, mid-batch
-    results.push_back(verifier.verify(plan.controls, 7, 0.0));
+    results.push_back(verifier.verify(plan.controls, 20, 0.1));  // passes early, mid-batch
+    results.push_back(verifier.measure(plan.controls, 7));
   }
   ASSERT_EQ(scene.evaluator.threads(), 2u);
-  for (std::size_t i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < 4; ++i) {
     EXPECT_EQ(byThreads[0][i].runs, byThreads[1][i].runs) << "verification " << i;
     EXPECT_EQ(byThreads[0][i].successes, byThreads[1][i].successes) << "verification " << i;
     EXPECT_EQ(byThreads[0][i].passed, byThreads[1][i].passed) << "verification " << i;
@@ -103,8 +124,11 @@ TEST(PlanVerifierTest, WorkerProcessesCountTheSameRuns) {
   // The plan succeeds about a fifth of the time: 0.9 stops after a few runs, not all 20.
   EXPECT_LT(byThreads[0][1].runs, 20u);
   EXPECT_FALSE(byThreads[0][1].passed);
-  const unsigned counted = 11 + byThreads[0][1].runs;
-  EXPECT_EQ(byThreads[1][2].successes,
+  // 0.1 of 20: the second success decides it.
+  EXPECT_TRUE(byThreads[0][2].passed);
+  EXPECT_EQ(byThreads[0][2].successes, 2u);
+  const unsigned counted = 11 + byThreads[0][1].runs + byThreads[0][2].runs;
+  EXPECT_EQ(byThreads[1][3].successes,
             successesOfStreams(scene.context, plan.controls, counted, 7));
 }
 

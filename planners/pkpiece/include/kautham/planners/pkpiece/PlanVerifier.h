@@ -12,7 +12,7 @@ namespace kautham::planners {
 struct VerificationResult {
   unsigned runs = 0;       ///< executions run (fewer than asked when it stopped early)
   unsigned successes = 0;  ///< of those, valid all along and ending in the goal
-  bool passed = false;     ///< the success rate reached the threshold over all the runs asked
+  bool passed = false;     ///< the success rate reaches the threshold over all the runs asked
   double rate() const { return runs == 0 ? 0.0 : static_cast<double>(successes) / runs; }
 };
 
@@ -31,12 +31,20 @@ class PlanVerifier {
  public:
   PlanVerifier(MotionEvaluator& evaluator, std::uint64_t seedBase);
 
-  /// Runs up to `runs` executions of `controls`; stops as soon as too many have failed for
-  /// the rate over all `runs` to reach `threshold` (a rejected plan costs less).
+  /// Runs up to `runs` executions of `controls`; stops as soon as the rate over all `runs`
+  /// is sure to reach `threshold` (enough have succeeded) or sure not to (too many have
+  /// failed): the verdict is the one all the runs would give, for fewer runs.
   VerificationResult verify(const std::vector<physics::ControlStep>& controls, unsigned runs,
                             double threshold);
+  /// Runs all `runs` executions of `controls`: the success rate they measure.
+  VerificationResult measure(const std::vector<physics::ControlStep>& controls, unsigned runs);
 
  private:
+  /// Runs up to `runs` executions; stops once `needed` have succeeded or more than
+  /// `allowed` have failed.
+  VerificationResult count(const std::vector<physics::ControlStep>& controls, unsigned runs,
+                           unsigned needed, unsigned allowed);
+
   MotionEvaluator& evaluator_;
   std::uint64_t seedBase_;
   std::uint64_t nextRun_ = 0;  ///< runs counted so far: every counted run has its own stream
