@@ -18,11 +18,10 @@ PlanVerifier::PlanVerifier(MotionEvaluator& evaluator, std::uint64_t seedBase)
 
 VerificationResult PlanVerifier::verify(const std::vector<physics::ControlStep>& controls,
                                         unsigned runs, double threshold) {
-  // The fewest successes that reach `threshold` over all the runs, and the most failures
-  // that still leave it reachable: the count is decided as soon as either is reached.
+  // The fewest successes that reach `threshold` over all the runs; more failures than the
+  // rest put it out of reach. The count is decided as soon as either happens.
   const auto needed = static_cast<unsigned>(std::ceil(runs * threshold - 1e-9));
-  const auto allowed = static_cast<unsigned>(std::floor(runs * (1.0 - threshold) + 1e-9));
-  VerificationResult result = count(controls, runs, needed, allowed);
+  VerificationResult result = count(controls, runs, needed, runs - needed);
   result.passed = result.successes >= needed;
   return result;
 }

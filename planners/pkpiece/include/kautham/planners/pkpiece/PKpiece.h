@@ -154,7 +154,7 @@ class PKpiece : public ompl::base::Planner,
   PlanVerifier verifier_;
   std::uint64_t verifications_ = 0;           ///< plans executed in sampled worlds (verifyRuns)
   std::uint64_t verificationRejections_ = 0;  ///< of those, the ones that did not pass
-  std::uint64_t verificationRuns_ = 0;
+  std::uint64_t verificationRuns_ = 0;        ///< sampled executions those and the estimates ran
   bool steerNext_ = false;  ///< the motion being expanded was chosen by the goal bias
 };
 
