@@ -42,13 +42,19 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
                            bool clearing, double pushPitch, bool kinematic, double clearBehind,
-                           double corridorPitch, double finalApproach)
+                           double corridorPitch, double finalApproach, double approachPitch)
     : context_(context),
+      approachTurn_(context.goal().nominalGoalPose().linear()),
       evaluator_(evaluator),
       clearing_(context, pushPitch, clearBehind, corridorPitch),
       clearingOn_(clearing),
       finalApproach_(finalApproach) {
   if (kinematic) kinematic_.emplace(context);
+  const physics::GoalSpec& spec = context.goal().spec();
+  if (!spec.approach || approachPitch == 0.0) return;
+  const Eigen::Vector3d across = spec.approach->cross(Eigen::Vector3d::UnitZ());
+  if (across.norm() < 1e-9) return;  // a vertical approach
+  approachTurn_ = Eigen::AngleAxisd(-approachPitch, across.normalized()) * approachTurn_;
 }
 
 double GoalSteering::rankDistance(const double* state) const {
@@ -70,7 +76,7 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
   if (const std::optional<Aim> lineUp = lineUpAim(start))
     return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
-  return steer(start, context_.goal().position(), context_.goal().nominalGoalPose().linear(), 0.0);
+  return steer(start, context_.goal().position(), approachTurn_, 0.0);
 }
 
 std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) const {
@@ -87,7 +93,7 @@ std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) co
   if (offLine <= kOnApproachLine && along <= kOnApproachLine &&
       along >= -finalApproach_ - kOnApproachLine)
     return std::nullopt;
-  const Eigen::Matrix3d& turn = context_.goal().nominalGoalPose().linear();
+  const Eigen::Matrix3d& turn = approachTurn_;
   const Eigen::Vector3d lineUp = goal - finalApproach_ * approach;
   // A side approach among the cans, from a push that ended low: up first, still turned as the
   // push left it, to the travel height above the cans; turned on the way, the fingers swung into

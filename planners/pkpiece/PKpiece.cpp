@@ -85,7 +85,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
       steering_(context, evaluator_, settings.clearingPush, settings.pushPitch,
                 settings.kinematicSteering, settings.clearBehind, settings.corridorPitch,
-                settings.finalApproach),
+                settings.finalApproach, settings.approachPitch),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL) {

@@ -176,36 +176,55 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   EXPECT_EQ(steering.jacobianAims(), 0u);
 }
 
-/// kuka_clutter_20 steered by GoalSteering (with `finalApproach`) until the goal is reached:
-/// how far off the approach line the goal link strayed during the last motion, the one that
-/// reached the goal (infinity when none did within 24 motions or a motion broke a rule).
-double offLineOfTheLastMove(double finalApproach) {
-  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
-  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+/// kuka_clutter_20 steered by GoalSteering (with `finalApproach` and `approachPitch`) until the
+/// goal is reached: whether it was (within 24 motions, no rule broken), how far off the approach
+/// line the goal link strayed during the last motion, and the state it ended in.
+struct SteeredApproach {
+  bool reached = false;
+  double offLine = std::numeric_limits<double>::infinity();
+  std::vector<double> end;
+};
+
+SteeredApproach steerToTheGoal(physics::PlanningContext& context, double finalApproach,
+                               double approachPitch = 0.0) {
   MotionEvaluator evaluator(context, 0.0);
-  const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2, finalApproach);
+  const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2, finalApproach,
+                              approachPitch);
   const physics::WorkspaceGoal& goal = context.goal();
   const Eigen::Vector3d approach = goal.spec().approach->normalized();
+  SteeredApproach result;
   std::vector<double> state = context.startState();
   for (int motion = 0; motion < 24; ++motion) {
     const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
-    if (!steered) return std::numeric_limits<double>::infinity();
+    if (!steered) return result;
     const NominalRun run =
         evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
-    if (run.steps < steered->steps && !run.reachedGoal)
-      return std::numeric_limits<double>::infinity();
+    if (run.steps < steered->steps && !run.reachedGoal) return result;
     if (run.reachedGoal) {
-      double offLine = 0.0;
+      result.reached = true;
+      result.offLine = 0.0;
       for (const std::vector<double>& s : run.states) {
         const Eigen::Vector3d fromGoal =
             context.layout().goalLinkPosition(s.data()) - goal.position();
-        offLine = std::max(offLine, (fromGoal - fromGoal.dot(approach) * approach).norm());
+        result.offLine =
+            std::max(result.offLine, (fromGoal - fromGoal.dot(approach) * approach).norm());
       }
-      return offLine;
+      result.end = run.end;
+      return result;
     }
     state = run.end;
   }
-  return std::numeric_limits<double>::infinity();
+  return result;
+}
+
+struct Clutter20 {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
+  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
+};
+
+double offLineOfTheLastMove(double finalApproach) {
+  Clutter20 scene;
+  return steerToTheGoal(scene.context, finalApproach).offLine;
 }
 
 TEST(GoalSteeringTest, TheLastMoveGoesStraightInAlongTheApproach) {
@@ -217,6 +236,32 @@ TEST(GoalSteeringTest, TheLastMoveGoesStraightInAlongTheApproach) {
   const double direct = offLineOfTheLastMove(0.0);
   EXPECT_LT(lined, 0.015);
   EXPECT_GT(direct, 0.03);
+}
+
+TEST(GoalSteeringTest, TheApproachPitchedDownLiftsTheWristOverTheCansBehind) {
+  // At the pre-grasp the KUKA's wrist and forearm reach back over kuka_clutter_20's can4;
+  // pitched down by 0.2 rad (the goal allows 0.3), the gripper still reaches the goal, points
+  // 0.2 rad below level, and its wrist stands higher than with the level approach.
+  Clutter20 level;
+  Clutter20 pitched;
+  const SteeredApproach flat = steerToTheGoal(level.context, 0.05);
+  const SteeredApproach down = steerToTheGoal(pitched.context, 0.05, 0.2);
+  ASSERT_TRUE(flat.reached);
+  ASSERT_TRUE(down.reached);
+  const physics::WorldLayout& layout = pitched.context.layout();
+  const auto pitchOf = [&layout](const std::vector<double>& state) {
+    return -std::asin(layout.goalLinkOrientation(state.data()).col(2).z());
+  };
+  EXPECT_NEAR(pitchOf(flat.end), 0.0, 0.05);
+  EXPECT_NEAR(pitchOf(down.end), 0.2, 0.05);
+  const auto& bodies = layout.bodies;
+  const auto wrist = std::find_if(bodies.begin(), bodies.end(), [](const physics::BodyInfo& b) {
+    return b.name.find("kuka_link_6") != std::string::npos;
+  });
+  ASSERT_NE(wrist, bodies.end());
+  const auto wristBody = static_cast<std::size_t>(wrist - bodies.begin());
+  EXPECT_GT(physics::WorldLayout::position(down.end.data(), wristBody).z(),
+            physics::WorldLayout::position(flat.end.data(), wristBody).z() + 0.015);
 }
 
 }  // namespace

@@ -130,7 +130,9 @@ TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBe
 TEST(PKpieceTest, SteeredCandidatesAreCountedAndWithoutUncertaintyAllValidOnesKept) {
   // Without uncertainty every valid candidate's belief is 1 (unless it moves an object too far),
   // and ties go to the first: the steered one. With no random keep, each valid steered
-  // candidate is kept.
+  // candidate is kept, but in the expansion that ends the search: there a random candidate
+  // that reaches the goal wins over a steered one that does not (seed 1 since session 16's
+  // pitched approach).
   const PlanRun nominal = plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1,
                                {{"uncertainty", "0"}, {"random_candidate", "0"}});
   ASSERT_TRUE(nominal.outcome.solved);
@@ -139,7 +141,8 @@ TEST(PKpieceTest, SteeredCandidatesAreCountedAndWithoutUncertaintyAllValidOnesKe
   const long kept = std::stol(nominal.property("steered_kept"));
   EXPECT_GT(aimed, 0);
   EXPECT_LE(valid, aimed);
-  EXPECT_EQ(kept, valid);
+  EXPECT_LE(kept, valid);
+  EXPECT_GE(kept, valid - 1);
   // The KUKA reaches nearly every aim on this scene by inverse kinematics (before the
   // corridor's steep pushes, every one; now one aim of this seed's finds no pose).
   EXPECT_LE(20 * std::stol(nominal.property("steered_by_jacobian")), aimed);

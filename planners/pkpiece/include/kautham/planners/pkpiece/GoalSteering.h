@@ -43,7 +43,7 @@ class GoalSteering {
   /// only). `finalApproach` (m): the straight last move's length (0: none).
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
                double pushPitch, bool kinematic, double clearBehind = 0.0,
-               double corridorPitch = 0.0, double finalApproach = 0.0);
+               double corridorPitch = 0.0, double finalApproach = 0.0, double approachPitch = 0.0);
 
   /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
   /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.
@@ -86,6 +86,9 @@ class GoalSteering {
   Eigen::Vector3d turnTo(const Eigen::Matrix3d& turn, const Eigen::Matrix3d& orientation) const;
 
   const physics::PlanningContext& context_;
+  /// How the approach turns the goal link: the goal's nominal orientation pitched down by
+  /// `approachPitch` about the horizontal across the approach.
+  Eigen::Matrix3d approachTurn_;
   MotionEvaluator& evaluator_;
   ClearingPush clearing_;
   bool clearingOn_;

@@ -58,6 +58,10 @@ struct PKpieceSettings {
   /// The goal steering's last move goes straight in along the approach from this far behind
   /// the goal point (m; 0: straight at the goal point from wherever the link is).
   double finalApproach;
+  /// The goal steering's approach points the gripper down by this much (rad), within the
+  /// goal's approach tolerance, so that the wrist and forearm ride higher over the objects
+  /// behind the pre-grasp.
+  double approachPitch;
   /// Before a plan ends the search, it is executed this many times open loop in sampled
   /// worlds (PlanVerifier); it ends the search only if at least goalConfidence of them
   /// succeed, and as many fresh executions then give its estimated success. 0: the
@@ -194,6 +198,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("the goal steering lines the gripper up this far behind the goal "
                              "point (m), turned as the goal asks, and then goes straight in "
                              "along the approach (0: straight at the goal point)"))
+          .add(&S::approachPitch,
+               Parameter::real("approach_pitch")
+                   .byDefault(0.0)
+                   .range(-0.5, 0.5)
+                   .describe("how far the goal steering's approach points the gripper down "
+                             "(rad, within the goal's approach tolerance), so the forearm rides "
+                             "higher over the objects behind the pre-grasp"))
           .add(&S::verifyRuns,
                Parameter::integer("verify_runs")
                    .byDefault(50)
