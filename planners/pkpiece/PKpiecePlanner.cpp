@@ -1,12 +1,27 @@
 // p-KPIECE's registry entry: the paper's planner, ours, on OMPL's grid (its baseline o-KPIECE,
 // OMPL's KPIECE1 with the knowledge rules only, is with the other OMPL planners).
 
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/pkpiece/PKpiece.h"
 
 namespace kautham::planners {
 
 namespace {
+
+/// The steered approach aims the gripper `pitch` off the goal's approach: beyond the goal's
+/// tolerance it could never end in the goal.
+void checkApproachPitch(double pitch, const physics::GoalSpec& goal) {
+  if (!goal.approach || std::abs(pitch) <= goal.approachTolerance) return;
+  std::ostringstream message;
+  message << "approach_pitch " << pitch << " rad is beyond the goal's approach tolerance ("
+          << goal.approachTolerance << " rad): the steered approach would end outside the goal; "
+          << "use at most " << goal.approachTolerance << " (the dense suite uses 0.2)";
+  throw std::invalid_argument(message.str());
+}
 
 PlannerRegistry::Entry pKpiece() {
   return plannerEntry<PKpieceSettings>(
@@ -18,6 +33,7 @@ PlannerRegistry::Entry pKpiece() {
         PKpieceSettings resolved = settings;
         if (resolved.displacement <= 0.0)
           resolved.displacement = context.problem().interaction.maxDisplacement;
+        checkApproachPitch(resolved.approachPitch, context.goal().spec());
         return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, resolved));
       });
 }

@@ -1,6 +1,9 @@
 // p-KPIECE and o-KPIECE on real problems, with the real physics and the real uncertainty
 // sampling; every plan is checked by replaying it.
 
+#include <stdexcept>
+#include <string>
+
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
 
@@ -146,6 +149,24 @@ TEST(PKpieceTest, SteeredCandidatesAreCountedAndWithoutUncertaintyAllValidOnesKe
   // The KUKA reaches nearly every aim on this scene by inverse kinematics (before the
   // corridor's steep pushes, every one; now one aim of this seed's finds no pose).
   EXPECT_LE(20 * std::stol(nominal.property("steered_by_jacobian")), aimed);
+}
+
+TEST(PKpieceTest, AnApproachPitchBeyondTheGoalsToleranceIsRejected) {
+  // kuka_clutter_10's goal allows the approach 0.3 rad off: a steered approach pitched 0.45 rad
+  // down could never end in it, so the planner is not made; 0.3 is accepted.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
+  const PlanRequest tooSteep =
+      makeRequest(problem, "p-KPIECE", {{"approach_pitch", "0.45"}}, seedRandomness(1));
+  physics::PlanningContext context(problem, 0, tooSteep.propagation());
+  try {
+    solve(context, tooSteep);
+    ADD_FAILURE() << "approach_pitch 0.45 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("approach_pitch"), std::string::npos) << e.what();
+  }
+  const PlanRequest atTheLimit = makeRequest(
+      problem, "p-KPIECE", {{"approach_pitch", "0.3"}, {"time_limit", "0.1"}}, seedRandomness(1));
+  EXPECT_NO_THROW(solve(context, atTheLimit));
 }
 
 TEST(PKpieceTest, WithoutKinematicSteeringTheJacobianAimsEverySteeredCandidate) {
