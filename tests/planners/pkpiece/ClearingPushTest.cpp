@@ -180,9 +180,9 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
 /// goal is reached: whether it was (within 24 motions, no rule broken), how far off the approach
 /// line the goal link strayed during the last motion, and the state it ended in.
 struct SteeredApproach {
-  bool reached = false;
   double offLine = std::numeric_limits<double>::infinity();
-  std::vector<double> end;
+  std::vector<double> end;  ///< empty when the goal was not reached
+  bool reached() const { return !end.empty(); }
 };
 
 SteeredApproach steerToTheGoal(physics::PlanningContext& context, double finalApproach,
@@ -201,7 +201,6 @@ SteeredApproach steerToTheGoal(physics::PlanningContext& context, double finalAp
         evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
     if (run.steps < steered->steps && !run.reachedGoal) return result;
     if (run.reachedGoal) {
-      result.reached = true;
       result.offLine = 0.0;
       for (const std::vector<double>& s : run.states) {
         const Eigen::Vector3d fromGoal =
@@ -246,8 +245,8 @@ TEST(GoalSteeringTest, TheApproachPitchedDownLiftsTheWristOverTheCansBehind) {
   Clutter20 pitched;
   const SteeredApproach flat = steerToTheGoal(level.context, 0.05);
   const SteeredApproach down = steerToTheGoal(pitched.context, 0.05, 0.2);
-  ASSERT_TRUE(flat.reached);
-  ASSERT_TRUE(down.reached);
+  ASSERT_TRUE(flat.reached());
+  ASSERT_TRUE(down.reached());
   const physics::WorldLayout& layout = pitched.context.layout();
   const auto pitchOf = [&layout](const std::vector<double>& state) {
     return -std::asin(layout.goalLinkOrientation(state.data()).col(2).z());
