@@ -20,9 +20,6 @@ constexpr double kStandOff = 0.05;  // m
 constexpr double kPushThrough = 0.03;  // m
 // The gripper counts as at the stand-off, or on the line of the push, within this.
 constexpr double kOnLine = 0.03;  // m
-// How far below the object's centre the fingers' middle pushes: 4.6 cm up a 12.2 cm can.
-// Lower, the palm grazes the table under control noise.
-constexpr double kBelowCentre = 0.015;  // m
 // The stand-off is reached from this high above the push: lowered onto it, the gripper
 // does not sweep through the objects beside it.
 constexpr double kAbove = 0.10;  // m
@@ -43,9 +40,9 @@ constexpr double kFloorMargin = 0.012;  // m
 constexpr double kLaterPush = 0.5;  // m
 }  // namespace
 
-ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch, double behind,
-                           double corridorPitch)
-    : context_(context), behind_(behind) {
+ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSettings& settings)
+    : context_(context), behind_(settings.behind), belowCentre_(settings.belowCentre) {
+  const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
     const physics::BodyInfo& body = layout.bodies[b];
@@ -70,7 +67,7 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, double pitch
   const Eigen::AngleAxisd pitchDown(-pitch, across_);
   orientation_ = pitchDown * context.goal().nominalGoalPose().linear();
   fingers_ = pitchDown * Eigen::Vector3d(-back_);
-  const Eigen::AngleAxisd steepDown(-std::max(pitch, corridorPitch), across_);
+  const Eigen::AngleAxisd steepDown(-std::max(pitch, settings.corridorPitch), across_);
   steepOrientation_ = steepDown * context.goal().nominalGoalPose().linear();
   steepFingers_ = steepDown * Eigen::Vector3d(-back_);
 }
@@ -118,7 +115,7 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const Eigen::Vector3d& fingers = steep ? steepFingers_ : fingers_;
   // The goal link aims where the fingers' middle meets the object below its centre.
   Eigen::Vector3d object = physics::WorldLayout::position(state, blocker);
-  object.z() -= kBelowCentre;
+  object.z() -= belowCentre_;
   object += kFingerMiddle * fingers;
   object.z() = std::max(object.z(), lowest_);
   // Push away from the side with more room: the stand-off lies on the other side.

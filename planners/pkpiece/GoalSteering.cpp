@@ -17,10 +17,10 @@ constexpr double kMetresPerRadian = 0.1;
 // The longest straight move a clearing motion aims for: the Jacobian is a linearisation, and
 // the tree steers again from where a shorter move ends.
 constexpr double kMaxStride = 0.1;  // m
-// How fast the goal link goes on the way to a push, and while pushing: a slow push leaves the
-// object upright and below the interaction's speed limit, where the joints' full speed flings it.
+// How fast the goal link goes on the way to a push (the push's own speed is a parameter: a
+// slow push leaves the object upright and below the interaction's speed limit, where the
+// joints' full speed flings it).
 constexpr double kMoveSpeed = 0.3;  // m/s
-constexpr double kPushSpeed = 0.1;  // m/s
 // The link counts as on the approach line behind the goal point within this of it: about
 // the control noise's drift over a move, well inside the goal's tolerance.
 constexpr double kOnApproachLine = 0.01;  // m
@@ -41,13 +41,14 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 }  // namespace
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
-                           bool clearing, double pushPitch, bool kinematic, double clearBehind,
-                           double corridorPitch, double finalApproach, double approachPitch)
+                           bool clearing, const PushSettings& push, bool kinematic,
+                           double finalApproach, double approachPitch)
     : context_(context),
       approachTurn_(context.goal().nominalGoalPose().linear()),
       evaluator_(evaluator),
-      clearing_(context, pushPitch, clearBehind, corridorPitch),
+      clearing_(context, push),
       clearingOn_(clearing),
+      pushSpeed_(push.speed),
       finalApproach_(finalApproach) {
   if (kinematic) kinematic_.emplace(context);
   const physics::GoalSpec& spec = context.goal().spec();
@@ -72,7 +73,7 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   if (clearingOn_)
     if (const std::optional<ClearingPush::Step> step = clearing_.next(start))
       return steer(start, step->waypoint, step->orientation,
-                   step->pushing ? kPushSpeed : kMoveSpeed);
+                   step->pushing ? pushSpeed_ : kMoveSpeed);
   if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
   if (const std::optional<Aim> lineUp = lineUpAim(start))
     return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
@@ -142,11 +143,12 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
                                                  double maxSpeed) const {
   const auto& si = context_.spaceInformation();
   const physics::WorldLayout& layout = context_.layout();
+  const double stride = strideAt(maxSpeed);
   if (kinematic_) {
     Eigen::Vector3d aim = target;
     const Eigen::Vector3d from = layout.goalLinkPosition(start);
-    if (maxSpeed > 0.0 && (target - from).norm() > kMaxStride)
-      aim = from + kMaxStride * (target - from).normalized();
+    if (maxSpeed > 0.0 && (target - from).norm() > stride)
+      aim = from + stride * (target - from).normalized();
     if (std::optional<NominalMotion> motion =
             kinematic_->towards(start, aim, orientation, maxSpeed))
       return motion;
@@ -164,7 +166,7 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   Eigen::Matrix<double, 6, 1> toGo;
   toGo.head<3>() = target - layout.goalLinkPosition(start);
   toGo.tail<3>() = kMetresPerRadian * turnRows * turnTo(startTurn, orientation);
-  if (maxSpeed > 0.0 && toGo.norm() > kMaxStride) toGo *= kMaxStride / toGo.norm();
+  if (maxSpeed > 0.0 && toGo.norm() > stride) toGo *= stride / toGo.norm();
   const Eigen::Matrix<double, 6, 6> damped =
       jacobian * jacobian.transpose() +
       kDamping * kDamping * Eigen::Matrix<double, 6, 6>::Identity();
@@ -172,6 +174,14 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   // The fewest steps whose control stays within the limits (and the link below maxSpeed).
   return pacedMotion(*si, std::vector<double>(perStep.data(), perStep.data() + perStep.size()),
                      perStep.cwiseAbs().maxCoeff(), toGo.head<3>().norm(), maxSpeed);
+}
+
+double GoalSteering::strideAt(double maxSpeed) const {
+  if (maxSpeed <= 0.0) return kMaxStride;
+  // A motion lasts at most the longest control duration: a longer stride would go faster.
+  const auto& si = *context_.spaceInformation();
+  const double longest = maxSpeed * si.getPropagationStepSize() * si.getMaxControlDuration();
+  return std::min(kMaxStride, longest);
 }
 
 Eigen::Matrix3d GoalSteering::turnProjection(const Eigen::Matrix3d& turn) const {

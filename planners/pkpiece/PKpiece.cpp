@@ -83,9 +83,10 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()),
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
-      steering_(context, evaluator_, settings.clearingPush, settings.pushPitch,
-                settings.kinematicSteering, settings.clearBehind, settings.corridorPitch,
-                settings.finalApproach, settings.approachPitch),
+      steering_(context, evaluator_, settings.clearingPush,
+                PushSettings{settings.pushPitch, settings.clearBehind, settings.corridorPitch,
+                             settings.pushBelowCentre, settings.pushSpeed},
+                settings.kinematicSteering, settings.finalApproach, settings.approachPitch),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL) {

@@ -18,6 +18,10 @@ namespace kautham::planners {
 namespace {
 
 constexpr double kPitch = 0.45;  // rad, p-KPIECE's default push_pitch
+// The push as p-KPIECE does it by default: free space only, and with the corridor 20 cm
+// behind the goal point cleared first, pitched 1.2 rad.
+const PushSettings kPush{kPitch};
+const PushSettings kCorridorPush{kPitch, 0.2, 1.2};
 
 struct ClutterScene {
   core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
@@ -37,7 +41,7 @@ struct ClutterScene {
 
 TEST(ClearingPushTest, StartsAboveAStandOffBesideTheBlockerAndLowEnoughNotToTipIt) {
   ClutterScene scene;
-  const ClearingPush clearing(scene.context, kPitch);
+  const ClearingPush clearing(scene.context, kPush);
   const std::vector<double>& start = scene.context.startState();
   const std::optional<ClearingPush::Step> step = clearing.next(start.data());
   ASSERT_TRUE(step.has_value());
@@ -51,21 +55,32 @@ TEST(ClearingPushTest, StartsAboveAStandOffBesideTheBlockerAndLowEnoughNotToTipI
   EXPECT_GT(step->remaining, 0.3);
 }
 
-TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
-  ClutterScene scene;
-  const ClearingPush clearing(scene.context, kPitch);
+/// kuka_clutter_10's start with the whole robot carried (every body, unturned) so that its
+/// fingertips stand where the default push at can1 starts: its stand-off, lowered to 1.5 cm
+/// below the can's centre.
+std::vector<double> atTheStandOff(const ClutterScene& scene) {
+  const ClearingPush clearing(scene.context, kPush);
   const std::vector<double>& start = scene.context.startState();
-  const ClearingPush::Step first = *clearing.next(start.data());
+  const Eigen::Vector3d above = clearing.next(start.data())->waypoint;
   const Eigen::Vector3d can = scene.position(start, "can1");
-  // Carry the whole robot (every body, unturned) so that its fingertips stand where the push
-  // starts: the stand-off, lowered.
   std::vector<double> state = start;
   const physics::WorldLayout& layout = scene.context.layout();
-  const Eigen::Vector3d standOff(first.waypoint.x(), first.waypoint.y(), can.z() - 0.015);
+  const Eigen::Vector3d standOff(above.x(), above.y(), can.z() - 0.015);
   const Eigen::Vector3d shift = standOff - layout.goalLinkPosition(state.data());
   for (std::size_t b = 0; b < layout.bodies.size(); ++b)
     if (layout.bodies[b].role == physics::BodyRole::Robot)
       for (int k = 0; k < 3; ++k) state[b * physics::WorldLayout::kBodyStateSize + k] += shift[k];
+  return state;
+}
+
+TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
+  ClutterScene scene;
+  const ClearingPush clearing(scene.context, kPush);
+  const std::vector<double>& start = scene.context.startState();
+  const ClearingPush::Step first = *clearing.next(start.data());
+  const Eigen::Vector3d can = scene.position(start, "can1");
+  const std::vector<double> state = atTheStandOff(scene);
+  const Eigen::Vector3d standOff = scene.context.layout().goalLinkPosition(state.data());
   const std::optional<ClearingPush::Step> push = clearing.next(state.data());
   ASSERT_TRUE(push.has_value());
   EXPECT_TRUE(push->pushing);
@@ -80,10 +95,27 @@ TEST(ClearingPushTest, PushesFromBehindTheBlockerAcrossTheApproachLowOnIt) {
   EXPECT_LT(push->remaining, first.remaining);
 }
 
+TEST(ClearingPushTest, PushesAsFarBelowTheCentreAsAskedButNotBelowTheWorkspaceFloor) {
+  // push_below_centre sets where the fingers' middle meets can1 (centre 0.811 m): 1 cm above
+  // the centre when asked; asked 8 cm below it (under the table top), the goal link stays
+  // 1.2 cm above the workspace's floor (0.77 m) instead.
+  ClutterScene scene;
+  const double centre = scene.position(scene.context.startState(), "can1").z();
+  const std::vector<double> state = atTheStandOff(scene);
+  const ClearingPush higher(scene.context, PushSettings{kPitch, 0.0, 0.0, -0.01});
+  const ClearingPush::Step high = *higher.next(state.data());
+  ASSERT_TRUE(high.pushing);
+  const Eigen::Vector3d fingers = high.orientation.col(2);
+  EXPECT_NEAR((high.waypoint - 0.025 * fingers).z(), centre + 0.01, 1e-9);
+  const ClearingPush deeper(scene.context, PushSettings{kPitch, 0.0, 0.0, 0.08});
+  EXPECT_NEAR(deeper.next(state.data())->waypoint.z(), scene.problem.workspace.min().z() + 0.012,
+              1e-9);
+}
+
 TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true, kPitch, false);
+  const GoalSteering steering(scene.context, evaluator, true, kPush, false);
   const std::vector<double>& start = scene.context.startState();
   const double blocked = steering.rankDistance(start.data());
   EXPECT_GT(blocked, GoalSteering::kBlockedRank + 0.3);
@@ -93,7 +125,7 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
   EXPECT_NEAR(clear, scene.context.goal().searchDistance(cleared.data()), 1e-12);
   EXPECT_LT(clear, blocked);
   // Without the clearing push the rank is the search distance, blocked or not.
-  const GoalSteering plain(scene.context, evaluator, false, kPitch, false);
+  const GoalSteering plain(scene.context, evaluator, false, kPush, false);
   EXPECT_NEAR(plain.rankDistance(start.data()), scene.context.goal().searchDistance(start.data()),
               1e-12);
 }
@@ -101,8 +133,8 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
 TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true, kPitch, false);
-  const ClearingPush clearing(scene.context, kPitch);
+  const GoalSteering steering(scene.context, evaluator, true, kPush, false);
+  const ClearingPush clearing(scene.context, kPush);
   const std::vector<double>& start = scene.context.startState();
   const Eigen::Vector3d waypoint = clearing.next(start.data())->waypoint;
   const std::optional<NominalMotion> motion = steering.towardsGoal(start.data());
@@ -117,6 +149,40 @@ TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
   EXPECT_LT(after, before - 0.07) << before << " -> " << after;
 }
 
+TEST(ClearingPushTest, PushesNoFasterThanItsPushSpeed) {
+  // kuka_clutter_10, the real physics: steered by inverse kinematics to can1's stand-off, and
+  // from there pushed. At push_speed 0.05 m/s the link goes at most that fast: a motion lasts
+  // at most 20 steps of 0.05 s, so the push's stride shortens to 5 cm. At 0.1 m/s it goes
+  // faster. (Before the stride followed the speed, both went 10 cm in a second.)
+  ClutterScene scene;
+  MotionEvaluator evaluator(scene.context, 0.0);
+  const GoalSteering steering(scene.context, evaluator, true, kPush, true);
+  const ClearingPush clearing(scene.context, kPush);
+  std::vector<double> state = scene.context.startState();
+  for (int motion = 0; motion < 12 && !clearing.next(state.data())->pushing; ++motion) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
+    ASSERT_TRUE(steered.has_value()) << "motion " << motion;
+    state = evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false).end;
+  }
+  ASSERT_TRUE(clearing.next(state.data())->pushing);
+  const physics::WorldLayout& layout = scene.context.layout();
+  const auto linkSpeed = [&](double pushSpeed) {
+    const GoalSteering pusher(scene.context, evaluator, true,
+                              PushSettings{kPitch, 0.0, 0.0, 0.015, pushSpeed}, true);
+    const NominalMotion push = *pusher.towardsGoal(state.data());
+    const NominalRun run =
+        evaluator.runNominal(state.data(), push.control.data(), push.steps, false);
+    EXPECT_EQ(run.steps, push.steps) << "the push at " << pushSpeed << " m/s broke a rule";
+    const double travelled =
+        (layout.goalLinkPosition(run.end.data()) - layout.goalLinkPosition(state.data())).norm();
+    return travelled / (run.steps * scene.context.spaceInformation()->getPropagationStepSize());
+  };
+  const double slow = linkSpeed(0.05);
+  const double fast = linkSpeed(0.1);
+  EXPECT_LT(slow, 0.055);
+  EXPECT_GT(fast, 1.5 * slow);
+}
+
 TEST(ClearingPushTest, ClearsTheCorridorBehindThePreGraspFirstFurthestBack) {
   // kuka_clutter_20: can1 fills the free space and reaches behind the goal point; can3 stands
   // 16 cm behind it, where the wrist is at the pre-grasp (kautham check: every arm pose touches
@@ -124,7 +190,7 @@ TEST(ClearingPushTest, ClearsTheCorridorBehindThePreGraspFirstFurthestBack) {
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
   physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
   const auto& bodies = context.layout().bodies;
-  const ClearingPush corridor(context, kPitch, 0.2, 1.2);
+  const ClearingPush corridor(context, kCorridorPush);
   const std::vector<double>& start = context.startState();
   const std::optional<std::size_t> first = corridor.corridorBlocker(start.data());
   ASSERT_TRUE(first.has_value());
@@ -133,7 +199,7 @@ TEST(ClearingPushTest, ClearsTheCorridorBehindThePreGraspFirstFurthestBack) {
   // behind it; without the corridor the free space's can1 is pushed as before.
   const ClearingPush::Step step = *corridor.next(start.data());
   EXPECT_NEAR(step.orientation.col(2).z(), -std::sin(1.2), 1e-9);
-  const ClearingPush freeSpaceOnly(context, kPitch);
+  const ClearingPush freeSpaceOnly(context, kPush);
   EXPECT_FALSE(freeSpaceOnly.corridorBlocker(start.data()).has_value());
   EXPECT_NEAR(freeSpaceOnly.next(start.data())->orientation.col(2).z(), -std::sin(kPitch), 1e-9);
 }
@@ -145,8 +211,8 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_20.xml"));
   physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
   MotionEvaluator evaluator(context, 0.0);
-  const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2);
-  const ClearingPush clearing(context, kPitch, 0.2, 1.2);
+  const GoalSteering steering(context, evaluator, true, kCorridorPush, true);
+  const ClearingPush clearing(context, kCorridorPush);
   std::vector<double> state = context.startState();
   double leastUpright = 1.0;  // the cosine of the largest tilt of any can, after any motion
   std::string mostTilted;
@@ -188,7 +254,7 @@ struct SteeredApproach {
 SteeredApproach steerToTheGoal(physics::PlanningContext& context, double finalApproach,
                                double approachPitch = 0.0) {
   MotionEvaluator evaluator(context, 0.0);
-  const GoalSteering steering(context, evaluator, true, kPitch, true, 0.2, 1.2, finalApproach,
+  const GoalSteering steering(context, evaluator, true, kCorridorPush, true, finalApproach,
                               approachPitch);
   const physics::WorkspaceGoal& goal = context.goal();
   const Eigen::Vector3d approach = goal.spec().approach->normalized();

@@ -123,7 +123,7 @@ TEST(RobotSpreadTest, ParticlesStartWithTheRobotOfTheirSampleAndTheirOwnObjectPo
 TEST(GoalSteeringTest, TheSteeredMotionBringsTheGripperMuchCloserToTheGoal) {
   Scene scene;
   MotionEvaluator evaluator(scene.context, 0.3);
-  const GoalSteering steering(scene.context, evaluator, true, 0.45, false);
+  const GoalSteering steering(scene.context, evaluator, true, PushSettings{0.45}, false);
   const std::vector<double>& start = scene.context.startState();
   const std::optional<NominalMotion> motion = steering.towardsGoal(start.data());
   ASSERT_TRUE(motion.has_value());
@@ -149,7 +149,7 @@ TEST(GoalSteeringTest, WithoutTheClearingPushNoSteeringWhileAnObjectFillsTheFree
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
   physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
   MotionEvaluator evaluator(context, 0.3);
-  const GoalSteering steering(context, evaluator, false, 0.45, false);
+  const GoalSteering steering(context, evaluator, false, PushSettings{0.45}, false);
   std::vector<double> start = context.startState();
   EXPECT_FALSE(steering.towardsGoal(start.data()).has_value());
 

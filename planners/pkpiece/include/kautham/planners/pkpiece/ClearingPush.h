@@ -22,6 +22,18 @@ struct Transfer {
 Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target, double height,
                       double over, double below);
 
+/// How the clearing push is done: p-KPIECE's push_pitch, clear_behind, corridor_pitch,
+/// push_below_centre and push_speed parameters.
+struct PushSettings {
+  double pitch = 0.0;          ///< rad the gripper points down on the way to and during a push
+  double behind = 0.0;         ///< m behind the goal point the corridor is cleared (0: not)
+  double corridorPitch = 0.0;  ///< rad the corridor's pushes point down (at least `pitch`)
+  /// m below the pushed object's centre the fingers' middle meets it (negative: above); never
+  /// lower than the workspace's floor allows the goal link.
+  double belowCentre = 0.015;
+  double speed = 0.1;  ///< m/s the goal link pushes at
+};
+
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
 /// paper): a push that moves the object sideways out of the approach, low on the object.
 ///
@@ -29,7 +41,7 @@ Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target
 /// room; from a push that ended low, straight up first, so that it passes over the cans),
 /// down to the push height, then sweeps across the approach through the object's centre. It
 /// points down a little all the while: held level that low, the wrist (behind the gripper, and
-/// wider) would drag on the table. The push is low (1.5 cm below the object's
+/// wider) would drag on the table. The push is low (by default 1.5 cm below the object's
 /// centre, 4.6 cm up a 12.2 cm can) because a can pushed at a side pre-grasp's height, near its
 /// top, tips over before it slides: it slides only when pushed below radius / friction (6.6 cm for
 /// a can with friction 0.5).
@@ -55,11 +67,7 @@ class ClearingPush {
     bool pushing = false;    ///< the goal link is behind the object, on the line of the push
   };
 
-  /// `pitch` (rad): how far the gripper points down on the way to and during the push.
-  /// `behind` (m): how far back from the goal point the corridor is cleared (0: not at all),
-  /// with the gripper pointing down by `corridorPitch` (rad; at least `pitch`).
-  ClearingPush(const physics::PlanningContext& context, double pitch, double behind = 0.0,
-               double corridorPitch = 0.0);
+  ClearingPush(const physics::PlanningContext& context, const PushSettings& settings);
 
   /// None when the free space and the corridor are clear, or the goal has no free space or
   /// side approach.
@@ -100,6 +108,7 @@ class ClearingPush {
   };
   std::vector<Footprint> footprints_;
   double behind_ = 0.0;
+  double belowCentre_ = 0.0;
 };
 
 }  // namespace kautham::planners

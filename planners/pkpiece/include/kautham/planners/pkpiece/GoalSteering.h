@@ -35,15 +35,14 @@ class GoalSteering {
   /// Blocked states rank behind every clear one by at least this much (m).
   static constexpr double kBlockedRank = 0.5;
 
-  /// `pushPitch` (rad): how far the clearing push points the gripper down. `kinematic`: aim by
-  /// inverse kinematics and a line in joint space (JointSpaceSteering), with the Jacobian
-  /// only where inverse kinematics finds no pose.
-  /// `clearBehind` (m): how far back from the goal point the clearing push also clears the
-  /// approach corridor, first, pitched by `corridorPitch` (ClearingPush; 0: the free space
-  /// only). `finalApproach` (m): the straight last move's length (0: none).
+  /// `push`: how the clearing push is done (its pitch, the corridor it clears behind the goal
+  /// point, its height and speed). `kinematic`: aim by inverse kinematics and a line in joint
+  /// space (JointSpaceSteering), with the Jacobian only where inverse kinematics finds no pose.
+  /// `finalApproach` (m): the straight last move's length (0: none). `approachPitch` (rad):
+  /// how far the approach points the gripper down.
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
-               double pushPitch, bool kinematic, double clearBehind = 0.0,
-               double corridorPitch = 0.0, double finalApproach = 0.0, double approachPitch = 0.0);
+               const PushSettings& push, bool kinematic, double finalApproach = 0.0,
+               double approachPitch = 0.0);
 
   /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
   /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.
@@ -75,6 +74,9 @@ class GoalSteering {
   /// faster than that and at most a stride far.
   std::optional<NominalMotion> steer(const double* start, const Eigen::Vector3d& target,
                                      const Eigen::Matrix3d& orientation, double maxSpeed) const;
+  /// The longest straight move aimed for at `maxSpeed` (m/s; 0: no limit): kMaxStride, or
+  /// less where a motion of the longest control duration would have to go faster.
+  double strideAt(double maxSpeed) const;
   /// The link's displacement and turn (world rotation vector) per step and unit of each control,
   /// from one physics step per control (and one without); none when a probe step is invalid.
   std::optional<Eigen::MatrixXd> probedJacobian(const double* start) const;
@@ -92,6 +94,7 @@ class GoalSteering {
   MotionEvaluator& evaluator_;
   ClearingPush clearing_;
   bool clearingOn_;
+  double pushSpeed_;  ///< m/s
   double finalApproach_;
   std::optional<JointSpaceSteering> kinematic_;
   mutable std::uint64_t jacobianAims_ = 0;

@@ -49,6 +49,10 @@ struct PKpieceSettings {
   /// How far the clearing push points the gripper down (rad), so the wrist rides above the
   /// table.
   double pushPitch;
+  /// How far below the pushed object's centre the fingers' middle pushes (m; negative: above).
+  double pushBelowCentre;
+  /// How fast the goal link pushes (m/s).
+  double pushSpeed;
   /// With the clearing push: how far back from the goal point the approach corridor is cleared
   /// first, where the arm stands at the pre-grasp (m; 0: the free space only).
   double clearBehind;
@@ -178,6 +182,18 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0.0, 1.5)
                    .describe("how far the clearing push points the gripper down (rad), so the "
                              "wrist rides above the table"))
+          .add(&S::pushBelowCentre,
+               Parameter::real("push_below_centre")
+                   .byDefault(0.015)
+                   .range(-0.1, 0.1)
+                   .describe("how far below the pushed object's centre the fingers' middle "
+                             "pushes (m; negative: above), never lower than the workspace's "
+                             "floor allows the goal link"))
+          .add(&S::pushSpeed, Parameter::real("push_speed")
+                                  .byDefault(0.1)
+                                  .range(0.01, 1.0)
+                                  .describe("how fast the goal link pushes (m/s): slower "
+                                            "leaves the object upright"))
           .add(&S::clearBehind,
                Parameter::real("clear_behind")
                    .byDefault(0.2)
