@@ -42,20 +42,21 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
                            bool clearing, const PushSettings& push, bool kinematic,
-                           double finalApproach, double approachPitch)
+                           const ApproachSettings& approach)
     : context_(context),
       approachTurn_(context.goal().nominalGoalPose().linear()),
       evaluator_(evaluator),
       clearing_(context, push),
       clearingOn_(clearing),
       pushSpeed_(push.speed),
-      finalApproach_(finalApproach) {
+      finalApproach_(approach.lineUp),
+      approachSpeed_(approach.speed) {
   if (kinematic) kinematic_.emplace(context);
   const physics::GoalSpec& spec = context.goal().spec();
-  if (!spec.approach || approachPitch == 0.0) return;
+  if (!spec.approach || approach.pitch == 0.0) return;
   const Eigen::Vector3d across = spec.approach->cross(Eigen::Vector3d::UnitZ());
   if (across.norm() < 1e-9) return;  // a vertical approach
-  approachTurn_ = Eigen::AngleAxisd(-approachPitch, across.normalized()) * approachTurn_;
+  approachTurn_ = Eigen::AngleAxisd(-approach.pitch, across.normalized()) * approachTurn_;
 }
 
 double GoalSteering::rankDistance(const double* state) const {
@@ -77,7 +78,7 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
   if (const std::optional<Aim> lineUp = lineUpAim(start))
     return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
-  return steer(start, context_.goal().position(), approachTurn_, 0.0);
+  return steer(start, context_.goal().position(), approachTurn_, approachSpeed_);
 }
 
 std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) const {

@@ -10,6 +10,15 @@
 
 namespace kautham::planners {
 
+/// How the goal steering makes its approach to the goal point: p-KPIECE's final_approach,
+/// approach_pitch and approach_speed parameters.
+struct ApproachSettings {
+  double lineUp = 0.0;  ///< m behind the goal point the straight last move starts (0: none)
+  double pitch = 0.0;   ///< rad the approach points the gripper down
+  /// m/s the last move goes at most (0: as fast as the joints allow, which the arm lags).
+  double speed = 0.0;
+};
+
 /// A control that drives the goal link to the goal region's centre, for p-KPIECE's
 /// goal-biased expansions (not in the paper: uniform random joint velocities enter a 3 cm
 /// region with the right approach about once in a thousand candidates).
@@ -25,11 +34,11 @@ namespace kautham::planners {
 /// with `clearing` off, not at all); with `clearBehind`, also while an object stands in the
 /// corridor behind the goal, where the arm will be.
 ///
-/// With `finalApproach`, a link that is not yet on the approach line behind the goal point is
-/// first steered to a point that far behind it, turned as the goal asks, and from there
-/// straight in. Steered straight at the goal point from beside it, the gripper turned and swept
-/// its fingers past the target on the way (kuka_clutter_10: the target touched in up to 33 of
-/// 100 executions).
+/// With a line-up distance (`ApproachSettings::lineUp`), a link that is not yet on the approach
+/// line behind the goal point is first steered to a point that far behind it, turned as the goal
+/// asks, and from there straight in. Steered straight at the goal point from beside it, the gripper
+/// turned and swept its fingers past the target on the way (kuka_clutter_10: the target touched in
+/// up to 33 of 100 executions).
 class GoalSteering {
  public:
   /// Blocked states rank behind every clear one by at least this much (m).
@@ -38,11 +47,10 @@ class GoalSteering {
   /// `push`: how the clearing push is done (its pitch, the corridor it clears behind the goal
   /// point, its height and speed). `kinematic`: aim by inverse kinematics and a line in joint
   /// space (JointSpaceSteering), with the Jacobian only where inverse kinematics finds no pose.
-  /// `finalApproach` (m): the straight last move's length (0: none). `approachPitch` (rad):
-  /// how far the approach points the gripper down.
+  /// `approach`: the straight last move's length, the gripper's pitch on the approach and the
+  /// last move's speed.
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
-               const PushSettings& push, bool kinematic, double finalApproach = 0.0,
-               double approachPitch = 0.0);
+               const PushSettings& push, bool kinematic, const ApproachSettings& approach = {});
 
   /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
   /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.
@@ -63,7 +71,7 @@ class GoalSteering {
     Eigen::Matrix3d orientation;
   };
   /// Where the link heads to line up for the straight last move, when it is not on that line
-  /// yet: the line-up point on the approach line, `finalApproach` behind the goal point,
+  /// yet: the line-up point on the approach line, the line-up distance behind the goal point,
   /// turned as the goal asks. For a side approach near the cans: up to
   /// ClearingPush::travelHeight() first (as it is turned), over the line-up point, and down
   /// onto it; from high above them, none (straight at the goal point). None without an
@@ -89,13 +97,14 @@ class GoalSteering {
 
   const physics::PlanningContext& context_;
   /// How the approach turns the goal link: the goal's nominal orientation pitched down by
-  /// `approachPitch` about the horizontal across the approach.
+  /// the approach's pitch about the horizontal across the approach.
   Eigen::Matrix3d approachTurn_;
   MotionEvaluator& evaluator_;
   ClearingPush clearing_;
   bool clearingOn_;
-  double pushSpeed_;  ///< m/s
-  double finalApproach_;
+  double pushSpeed_;      ///< m/s
+  double finalApproach_;  ///< m, the line-up distance
+  double approachSpeed_;  ///< m/s; 0: no limit
   std::optional<JointSpaceSteering> kinematic_;
   mutable std::uint64_t jacobianAims_ = 0;
 };

@@ -66,6 +66,9 @@ struct PKpieceSettings {
   /// goal's approach tolerance, so that the wrist and forearm ride higher over the objects
   /// behind the pre-grasp.
   double approachPitch;
+  /// The goal steering's last move goes no faster than this (m/s; 0: as fast as the joints
+  /// allow).
+  double approachSpeed;
   /// Before a plan ends the search, it is executed this many times open loop in sampled
   /// worlds (PlanVerifier); it ends the search only if at least goalConfidence of them
   /// succeed, and as many fresh executions then give its estimated success. 0: the
@@ -221,6 +224,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("how far the goal steering's approach points the gripper down "
                              "(rad, within the goal's approach tolerance), so the forearm rides "
                              "higher over the objects behind the pre-grasp"))
+          .add(&S::approachSpeed,
+               Parameter::real("approach_speed")
+                   .byDefault(0.0)
+                   .range(0.0, 1.0)
+                   .describe("how fast the goal steering's last move may go (m/s; 0: as fast as "
+                             "the joints allow, which the arm lags and ends short of the goal "
+                             "point)"))
           .add(&S::verifyRuns,
                Parameter::integer("verify_runs")
                    .byDefault(50)
