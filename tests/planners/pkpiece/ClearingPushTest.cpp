@@ -242,20 +242,22 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   EXPECT_EQ(steering.jacobianAims(), 0u);
 }
 
-/// kuka_clutter_20 steered by GoalSteering (with `finalApproach` and `approachPitch`) until the
-/// goal is reached: whether it was (within 24 motions, no rule broken), how far off the approach
-/// line the goal link strayed during the last motion, and the state it ended in.
+/// A scene steered by GoalSteering (with `approach`, and `push` while something blocks the
+/// goal) until the goal is reached: whether it was (within 24 motions, no rule broken), how far
+/// off the approach line the goal link strayed during the last motion, and the state it ended
+/// in. `throughGoal`: each motion runs to its end, as p-KPIECE runs a steered candidate, not
+/// only until it enters the goal.
 struct SteeredApproach {
   double offLine = std::numeric_limits<double>::infinity();
   std::vector<double> end;  ///< empty when the goal was not reached
   bool reached() const { return !end.empty(); }
 };
 
-SteeredApproach steerToTheGoal(physics::PlanningContext& context, double finalApproach,
-                               double approachPitch = 0.0) {
+SteeredApproach steerToTheGoal(physics::PlanningContext& context,
+                               const ApproachSettings& approachSettings,
+                               const PushSettings& push = kCorridorPush, bool throughGoal = false) {
   MotionEvaluator evaluator(context, 0.0);
-  const GoalSteering steering(context, evaluator, true, kCorridorPush, true,
-                              ApproachSettings{finalApproach, approachPitch});
+  const GoalSteering steering(context, evaluator, true, push, true, approachSettings);
   const physics::WorkspaceGoal& goal = context.goal();
   const Eigen::Vector3d approach = goal.spec().approach->normalized();
   SteeredApproach result;
@@ -264,7 +266,7 @@ SteeredApproach steerToTheGoal(physics::PlanningContext& context, double finalAp
     const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
     if (!steered) return result;
     const NominalRun run =
-        evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
+        evaluator.runNominal(state.data(), steered->control.data(), steered->steps, throughGoal);
     if (run.steps < steered->steps && !run.reachedGoal) return result;
     if (run.reachedGoal) {
       result.offLine = 0.0;
@@ -289,7 +291,7 @@ struct Clutter20 {
 
 double offLineOfTheLastMove(double finalApproach) {
   Clutter20 scene;
-  return steerToTheGoal(scene.context, finalApproach).offLine;
+  return steerToTheGoal(scene.context, ApproachSettings{finalApproach}).offLine;
 }
 
 TEST(GoalSteeringTest, TheLastMoveGoesStraightInAlongTheApproach) {
@@ -309,8 +311,8 @@ TEST(GoalSteeringTest, TheApproachPitchedDownLiftsTheWristOverTheCansBehind) {
   // 0.2 rad below level, and its wrist stands higher than with the level approach.
   Clutter20 level;
   Clutter20 pitched;
-  const SteeredApproach flat = steerToTheGoal(level.context, 0.05);
-  const SteeredApproach down = steerToTheGoal(pitched.context, 0.05, 0.2);
+  const SteeredApproach flat = steerToTheGoal(level.context, ApproachSettings{0.05});
+  const SteeredApproach down = steerToTheGoal(pitched.context, ApproachSettings{0.05, 0.2});
   ASSERT_TRUE(flat.reached());
   ASSERT_TRUE(down.reached());
   const physics::WorldLayout& layout = pitched.context.layout();
@@ -336,21 +338,10 @@ TEST(GoalSteeringTest, TheApproachPitchedDownLiftsTheWristOverTheCansBehind) {
 double yumiEndsFromTheGoalPoint(double approachSpeed) {
   const core::Problem problem = core::loadProblem(test::repoFile("problems/yumi_clutter_5.xml"));
   physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
-  MotionEvaluator evaluator(context, 0.0);
-  const GoalSteering steering(context, evaluator, true, PushSettings{}, true,
-                              ApproachSettings{0.0, 0.2, approachSpeed});
-  std::vector<double> state = context.startState();
-  for (int motion = 0; motion < 12; ++motion) {
-    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
-    if (!steered) break;
-    const NominalRun run =
-        evaluator.runNominal(state.data(), steered->control.data(), steered->steps, true);
-    if (run.reachedGoal)
-      return (context.layout().goalLinkPosition(run.end.data()) - context.goal().position()).norm();
-    if (run.steps < steered->steps) break;
-    state = run.end;
-  }
-  return std::numeric_limits<double>::infinity();
+  const SteeredApproach steered =
+      steerToTheGoal(context, ApproachSettings{0.0, 0.2, approachSpeed}, PushSettings{}, true);
+  if (!steered.reached()) return std::numeric_limits<double>::infinity();
+  return (context.layout().goalLinkPosition(steered.end.data()) - context.goal().position()).norm();
 }
 
 TEST(GoalSteeringTest, ALastMoveCappedInSpeedEndsNearerTheGoalPoint) {
