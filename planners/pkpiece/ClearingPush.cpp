@@ -29,9 +29,12 @@ constexpr double kOverTops = 0.04;  // m
 // The goal link is at the fingertips; the fingers' middle, which should meet the object,
 // lies this far back along the approach.
 constexpr double kFingerMiddle = 0.025;  // m
-// How far the gripper reaches back from the goal link (fingers, palm, wrist): the room a
-// stand-off needs lies along this footprint.
+// How far the gripper reaches back from the goal link (fingers, palm, wrist), held level: the
+// room a stand-off needs lies along this footprint (shorter as the gripper points down).
 constexpr double kFootprint = 0.12;  // m
+// A stand-off whose footprint passes nearer than this to another object's centre has no room:
+// a can's radius (3.3 cm) and a margin.
+constexpr double kCrowdedRoom = 0.06;  // m
 // Margin above the workspace floor (the goal link may not leave the workspace).
 constexpr double kFloorMargin = 0.012;  // m
 // What a push still to come after the current one adds to the remaining length: more than
@@ -64,12 +67,15 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
   across_.normalize();
   halfWidth_ = 0.5 * spec.freeSpace->size.dot(spec.levelAxis->normalized().cwiseAbs());
   lowest_ = context.problem().workspace.min().z() + kFloorMargin;
+  push_ = posture(pitch);
+  corridor_ = posture(std::max(pitch, settings.corridorPitch));
+  crowded_ = posture(settings.crowdedPitch);
+}
+
+ClearingPush::Posture ClearingPush::posture(double pitch) const {
   const Eigen::AngleAxisd pitchDown(-pitch, across_);
-  orientation_ = pitchDown * context.goal().nominalGoalPose().linear();
-  fingers_ = pitchDown * Eigen::Vector3d(-back_);
-  const Eigen::AngleAxisd steepDown(-std::max(pitch, settings.corridorPitch), across_);
-  steepOrientation_ = steepDown * context.goal().nominalGoalPose().linear();
-  steepFingers_ = steepDown * Eigen::Vector3d(-back_);
+  return {pitch, pitchDown * context_.goal().nominalGoalPose().linear(),
+          pitchDown * Eigen::Vector3d(-back_), kFootprint * std::cos(pitch)};
 }
 
 std::optional<std::size_t> ClearingPush::corridorBlocker(const double* state) const {
@@ -103,44 +109,93 @@ std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const 
   // The corridor first; after it, the free space (a push of its own, counted as kLaterPush).
   if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
     return pushStep(state, *inCorridor,
-                    inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0, true);
-  if (inFreeSpace) return pushStep(state, *inFreeSpace, 0.0, false);
+                    inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0, corridor_);
+  if (inFreeSpace) return pushStep(state, *inFreeSpace, 0.0, push_);
   return std::nullopt;
 }
 
-ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t blocker, double later,
-                                          bool steep) const {
-  const physics::WorkspaceGoal& goal = context_.goal();
-  const Eigen::Matrix3d& turn = steep ? steepOrientation_ : orientation_;
-  const Eigen::Vector3d& fingers = steep ? steepFingers_ : fingers_;
+const ClearingPush::Posture& ClearingPush::choosePosture(const double* state, std::size_t blocker,
+                                                         const Posture& own) const {
+  if (crowded_.pitch <= own.pitch) return own;
+  const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
+  const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
+  if (onLine(link, aimAt(centre, own)) || onLine(link, aimAt(centre, crowded_))) {
+    // A push under way keeps the posture the gripper is nearest: the pitch it has now.
+    return nearer(pitchNow(state), own, crowded_);
+  }
+  const double ownRoom = std::max(room(state, standOff(centre, own, 1.0), blocker, own.reach),
+                                  room(state, standOff(centre, own, -1.0), blocker, own.reach));
+  if (ownRoom >= kCrowdedRoom) return own;
+  const double crowdedRoom =
+      std::max(room(state, standOff(centre, crowded_, 1.0), blocker, crowded_.reach),
+               room(state, standOff(centre, crowded_, -1.0), blocker, crowded_.reach));
+  return crowdedRoom > ownRoom ? crowded_ : own;
+}
+
+double ClearingPush::pitchNow(const double* state) const {
+  const Eigen::Vector3d pointing = context_.layout().goalLinkOrientation(state).col(2);
+  return -std::asin(std::clamp(pointing.z(), -1.0, 1.0));
+}
+
+const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a,
+                                                  const Posture& b) {
+  return std::abs(pitch - b.pitch) < std::abs(pitch - a.pitch) ? b : a;
+}
+
+bool ClearingPush::onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const {
+  const Eigen::Vector3d fromAim = link - aim;
+  return (fromAim - fromAim.dot(across_) * across_).norm() <= kOnLine;
+}
+
+Eigen::Vector3d ClearingPush::aimAt(const Eigen::Vector3d& centre, const Posture& posture) const {
   // The goal link aims where the fingers' middle meets the object below its centre.
-  Eigen::Vector3d object = physics::WorldLayout::position(state, blocker);
-  object.z() -= belowCentre_;
-  object += kFingerMiddle * fingers;
-  object.z() = std::max(object.z(), lowest_);
+  Eigen::Vector3d aim = centre;
+  aim.z() -= belowCentre_;
+  aim += kFingerMiddle * posture.fingers;
+  aim.z() = std::max(aim.z(), lowest_);
+  return aim;
+}
+
+Eigen::Vector3d ClearingPush::standOff(const Eigen::Vector3d& centre, const Posture& posture,
+                                       double side) const {
+  return aimAt(centre, posture) + side * (halfWidth_ + kStandOff) * across_;
+}
+
+ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t blocker, double later,
+                                          const Posture& own) const {
+  const physics::WorkspaceGoal& goal = context_.goal();
+  const Posture& posture = choosePosture(state, blocker, own);
+  const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
+  const Eigen::Vector3d object = aimAt(centre, posture);
+  const Eigen::Vector3d plus = standOff(centre, posture, 1.0);
+  const Eigen::Vector3d minus = standOff(centre, posture, -1.0);
   // Push away from the side with more room: the stand-off lies on the other side.
-  const double standOff = halfWidth_ + kStandOff;
-  const Eigen::Vector3d plus = object + standOff * across_;
-  const Eigen::Vector3d minus = object - standOff * across_;
-  const bool fromPlus = room(state, plus, blocker) >= room(state, minus, blocker);
+  const bool fromPlus =
+      room(state, plus, blocker, posture.reach) >= room(state, minus, blocker, posture.reach);
   const Eigen::Vector3d direction = fromPlus ? Eigen::Vector3d(-across_) : across_;
   const Eigen::Vector3d start = fromPlus ? plus : minus;
   const Eigen::Vector3d end = object + kPushThrough * direction;
   const double endToGoal = later + (goal.position() - end).norm();
 
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
-  const Eigen::Vector3d fromObject = link - object;
-  const double along = fromObject.dot(direction);
-  const double offLine = (fromObject - along * direction).norm();
-  if (along <= 0.0 && offLine <= kOnLine)
-    return Step{end, turn, (end - link).norm() + endToGoal, true};
+  const double along = (link - object).dot(direction);
+  if (along <= 0.0 && onLine(link, object))
+    return Step{end, posture.orientation, (end - link).norm() + endToGoal, true};
   // To the stand-off over the cans, from above it (high enough to pass over them); from a push
   // that ended low, up first: a straight move from there to the next stand-off sweeps through
   // the tops of the cans between (it tipped can1 on kuka_clutter_20, on the way from can3's
   // push to can1's).
   const Transfer transfer =
       transferOver(link, start, std::max(start.z() + kAbove, travelHeight_), kOnLine, kOnLine);
-  return Step{transfer.waypoint, turn, transfer.length + (end - start).norm() + endToGoal, false};
+  // On the way up from a push the gripper keeps the posture it pushed with: turned low, next to
+  // the cans it had pushed, the gripper swept one (yumi_clutter_30, can3, turning from the
+  // corridor's steep push to the free space's level one).
+  const Posture& held =
+      transfer.leg == Transfer::Leg::Up
+          ? nearer(pitchNow(state), nearer(pitchNow(state), push_, corridor_), crowded_)
+          : posture;
+  return Step{transfer.waypoint, held.orientation,
+              transfer.length + (end - start).norm() + endToGoal, false};
 }
 
 Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target, double height,
@@ -156,10 +211,10 @@ Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target
   return {Transfer::Leg::Across, above, (above - link).norm() + descent};
 }
 
-double ClearingPush::room(const double* state, const Eigen::Vector3d& point,
-                          std::size_t blocker) const {
+double ClearingPush::room(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
+                          double reach) const {
   double nearest = std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d wrist = point + kFootprint * back_;
+  const Eigen::Vector3d wrist = point + reach * back_;
   const auto& bodies = context_.layout().bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;

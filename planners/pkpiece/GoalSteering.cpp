@@ -29,6 +29,10 @@ constexpr double kOnApproachLine = 0.01;  // m
 constexpr double kOverLineUp = 0.03;  // m
 // This far above the travel height the link is high above the cans, not near them after a push.
 constexpr double kHighAbove = 0.05;  // m
+// A gripper pointing further down than the approach by more than this (after a steep push)
+// turns only once above the cans: turned low, where a push ends, its fingertips dipped below the
+// workspace's floor (yumi_clutter_30, from a push pitched 1.2 rad).
+constexpr double kLargeTurn = 0.5;  // rad
 // An approach less steep than this (the sine of its angle below horizontal) comes in from the
 // side, between the objects on the table.
 constexpr double kSideApproach = 0.5;
@@ -78,6 +82,8 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
   if (const std::optional<Aim> lineUp = lineUpAim(start))
     return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
+  if (const std::optional<Aim> up = riseAim(start))
+    return steer(start, up->position, up->orientation, kMoveSpeed);
   return steer(start, context_.goal().position(), approachTurn_, approachSpeed_);
 }
 
@@ -112,6 +118,25 @@ std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) co
   if (transfer.leg == Transfer::Leg::Up)
     return Aim{transfer.waypoint, context_.layout().goalLinkOrientation(state)};
   return Aim{transfer.waypoint, turn};
+}
+
+std::optional<GoalSteering::Aim> GoalSteering::riseAim(const double* state) const {
+  const physics::GoalSpec& spec = context_.goal().spec();
+  if (!clearingOn_ || !spec.approach || std::abs(spec.approach->normalized().z()) >= kSideApproach)
+    return std::nullopt;
+  const Eigen::Matrix3d turn = context_.layout().goalLinkOrientation(state);
+  // How much further down the gripper points than the approach asks (the fingers' direction is
+  // the orientation's third column).
+  const double steeper = std::asin(std::clamp(approachTurn_.col(2).z(), -1.0, 1.0)) -
+                         std::asin(std::clamp(turn.col(2).z(), -1.0, 1.0));
+  const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
+  const double travel = clearing_.travelHeight();
+  if (steeper <= kLargeTurn) return std::nullopt;
+  // Up first, turned as it is; there, turned in place (turned on the way down, its fingers
+  // swung into yumi_clutter_30's target).
+  if (link.z() < travel - kOnApproachLine)
+    return Aim{Eigen::Vector3d(link.x(), link.y(), travel), turn};
+  return Aim{link, approachTurn_};
 }
 
 std::optional<Eigen::MatrixXd> GoalSteering::probedJacobian(const double* start) const {

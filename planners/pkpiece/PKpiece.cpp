@@ -86,7 +86,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       steering_(
           context, evaluator_, settings.clearingPush,
           PushSettings{settings.pushPitch, settings.clearBehind, settings.corridorPitch,
-                       settings.pushBelowCentre, settings.pushSpeed},
+                       settings.pushBelowCentre, settings.pushSpeed, settings.crowdedPitch},
           settings.kinematicSteering,
           ApproachSettings{settings.finalApproach, settings.approachPitch, settings.approachSpeed}),
       // Verification streams: a function of the seed, apart from the particles' (and from

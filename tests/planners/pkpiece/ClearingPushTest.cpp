@@ -242,6 +242,87 @@ TEST(ClearingPushTest, TheSteeredPushesClearTheCorridorAndThenTheFreeSpace) {
   EXPECT_EQ(steering.jacobianAims(), 0u);
 }
 
+/// yumi_clutter_30 as its file sets the push (level, corridor 15 cm behind the goal point),
+/// with the crowded pitch `crowdedPitch`, steered in the real physics along the clearing's
+/// waypoints, motion after motion, while it lasts (at most 24 motions): how many motions it
+/// took, whether one broke a rule, and where the last valid one ended.
+struct SteeredClearing {
+  int motions = 0;
+  bool brokeARule = false;
+  std::vector<double> end;
+};
+
+struct Clutter30 {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/yumi_clutter_30.xml"));
+  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
+};
+
+PushSettings yumiPush(double crowdedPitch) {
+  return PushSettings{0.0, 0.15, 0.0, 0.015, 0.1, crowdedPitch};
+}
+
+SteeredClearing steerTheClearing(physics::PlanningContext& context, double crowdedPitch) {
+  const PushSettings push = yumiPush(crowdedPitch);
+  MotionEvaluator evaluator(context, 0.0);
+  const GoalSteering steering(context, evaluator, true, push, true, ApproachSettings{0.0, 0.2});
+  const ClearingPush clearing(context, push);
+  SteeredClearing result;
+  result.end = context.startState();
+  for (; result.motions < 24 && clearing.next(result.end.data()); ++result.motions) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(result.end.data());
+    if (!steered) break;
+    const NominalRun run =
+        evaluator.runNominal(result.end.data(), steered->control.data(), steered->steps, false);
+    result.end = run.end;
+    if (run.steps < steered->steps) {
+      result.brokeARule = true;
+      return result;
+    }
+  }
+  return result;
+}
+
+TEST(ClearingPushTest, AStandOffWithNoRoomForTheLevelGripperIsReachedPitchedDown) {
+  // yumi_clutter_30: can2 stands in the corridor behind the pre-grasp, can4 beside it (1 cm
+  // apart) and can6 beyond it, 2.4 cm from the level gripper's footprint at can2's far stand-off.
+  // Lowered level onto that stand-off, the gripper tips can6. Pitched down 1.2 rad (the
+  // crowded pitch), its footprint reaches 4.3 cm back instead of 12: it gets down, and its
+  // push clears can2 (and can4 with it) from the corridor, and then can1 from the free space,
+  // every motion valid.
+  Clutter30 level;
+  const SteeredClearing tipped = steerTheClearing(level.context, 0.0);
+  EXPECT_TRUE(tipped.brokeARule);
+  Clutter30 crowded;
+  const SteeredClearing cleared = steerTheClearing(crowded.context, 1.2);
+  EXPECT_FALSE(cleared.brokeARule) << "after " << cleared.motions << " motions";
+  const ClearingPush clearing(crowded.context, yumiPush(1.2));
+  EXPECT_FALSE(clearing.next(cleared.end.data()).has_value());
+  EXPECT_FALSE(crowded.context.goal().freeSpaceBlocker(cleared.end.data()).has_value());
+}
+
+TEST(GoalSteeringTest, AfterASteepPushTheGripperRisesBeforeItTurns) {
+  // yumi_clutter_30 cleared with pushes pitched 1.2 rad: the last push ends with the fingertips
+  // 1.2 cm above the workspace's floor. Steered straight at the goal from there, turning to the
+  // approach's 0.2 rad on the way, the fingertips left the workspace at the first step. The
+  // steering first lifts the gripper straight up, still pitched as it is.
+  Clutter30 scene;
+  const SteeredClearing cleared = steerTheClearing(scene.context, 1.2);
+  ASSERT_FALSE(cleared.brokeARule);
+  MotionEvaluator evaluator(scene.context, 0.0);
+  const GoalSteering steering(scene.context, evaluator, true, yumiPush(1.2), true,
+                              ApproachSettings{0.0, 0.2});
+  const NominalMotion rise = *steering.towardsGoal(cleared.end.data());
+  const NominalRun run =
+      evaluator.runNominal(cleared.end.data(), rise.control.data(), rise.steps, false);
+  ASSERT_EQ(run.steps, rise.steps);
+  const physics::WorldLayout& layout = scene.context.layout();
+  const Eigen::Vector3d moved =
+      layout.goalLinkPosition(run.end.data()) - layout.goalLinkPosition(cleared.end.data());
+  EXPECT_GT(moved.z(), 0.05);
+  EXPECT_LT(moved.head<2>().norm(), 0.015);
+  EXPECT_GT(-layout.goalLinkOrientation(run.end.data()).col(2).z(), std::sin(1.0));
+}
+
 /// A scene steered by GoalSteering (with `approach`, and `push` while something blocks the
 /// goal) until the goal is reached: whether it was (within 24 motions, no rule broken), how far
 /// off the approach line the goal link strayed during the last motion, and the state it ended

@@ -32,6 +32,10 @@ struct PushSettings {
   /// lower than the workspace's floor allows the goal link.
   double belowCentre = 0.015;
   double speed = 0.1;  ///< m/s the goal link pushes at
+  /// rad a push points down when no stand-off beside the object has room for the gripper at
+  /// its own pitch, if that leaves more room (the footprint is shorter as it points down); not
+  /// above the push's own pitch: never.
+  double crowdedPitch = 0.0;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -80,11 +84,38 @@ class ClearingPush {
   std::optional<std::size_t> corridorBlocker(const double* state) const;
 
  private:
-  /// The push that clears `blocker`; `later` (m) stands for the clearing still to come after
-  /// it (in the remaining length). `steep`: pitched by the corridor's pitch.
-  Step pushStep(const double* state, std::size_t blocker, double later, bool steep) const;
-  /// How near the stand-off at `point` (and the wrist behind it) the other objects stand.
-  double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker) const;
+  /// How the gripper is held during a push: pitched down by `pitch`, turned as `orientation`,
+  /// its fingers pointing along `fingers`, reaching `reach` (m) back from the goal link over the
+  /// table.
+  struct Posture {
+    double pitch = 0.0;
+    Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d fingers = Eigen::Vector3d::Zero();
+    double reach = 0.0;
+  };
+  Posture posture(double pitch) const;
+  /// The push that clears `blocker`, held as `own` (or crowded); `later` (m) stands for the
+  /// clearing still to come after it (in the remaining length).
+  Step pushStep(const double* state, std::size_t blocker, double later, const Posture& own) const;
+  /// `own`, or the crowded posture when no stand-off has room at `own` and more at it; during a
+  /// push the one nearest the gripper's pitch.
+  const Posture& choosePosture(const double* state, std::size_t blocker, const Posture& own) const;
+  /// Where the goal link meets the object centred at `centre`: its fingers' middle below the
+  /// centre, not below the workspace's floor.
+  Eigen::Vector3d aimAt(const Eigen::Vector3d& centre, const Posture& posture) const;
+  /// The stand-off beside the object on the `side` (+1 or -1) across the approach.
+  Eigen::Vector3d standOff(const Eigen::Vector3d& centre, const Posture& posture,
+                           double side) const;
+  /// How far the gripper points down in `state` (rad).
+  double pitchNow(const double* state) const;
+  /// Of `a` and `b`, the posture whose pitch is nearer `pitch` (`a` if as near).
+  static const Posture& nearer(double pitch, const Posture& a, const Posture& b);
+  /// Whether `link` is on the line of a push through `aim` (across the approach).
+  bool onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const;
+  /// How near the stand-off at `point` (and the footprint `reach` behind it) the other objects
+  /// stand.
+  double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
+              double reach) const;
 
   const physics::PlanningContext& context_;
   Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
@@ -92,13 +123,9 @@ class ClearingPush {
   double halfWidth_ = 0.0;                            ///< of the free space, across the approach
   double lowest_ = 0.0;        ///< the lowest the goal link may go (workspace floor and margin)
   double travelHeight_ = 0.0;  ///< see travelHeight()
-  /// The push's posture: the goal's orientation pitched down, and its approach (where the
-  /// fingers point).
-  Eigen::Matrix3d orientation_ = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d fingers_ = Eigen::Vector3d::Zero();
-  /// The corridor push's posture and approach, pitched by the corridor's pitch.
-  Eigen::Matrix3d steepOrientation_ = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d steepFingers_ = Eigen::Vector3d::Zero();
+  Posture push_;               ///< the free space's push
+  Posture corridor_;           ///< the corridor's push
+  Posture crowded_;            ///< either, when its stand-offs have no room
   /// A movable object's bounds at the start, and where its body was then (the footprint moves
   /// with its body).
   struct Footprint {

@@ -77,6 +77,11 @@ class GoalSteering {
   /// onto it; from high above them, none (straight at the goal point). None without an
   /// approach.
   std::optional<Aim> lineUpAim(const double* state) const;
+  /// Without a line-up, for a side approach with the clearing push: from below the travel
+  /// height with the gripper pointing much further down than the approach (after a steep
+  /// push), straight up to that height, turned as it is; there, turned in place to the
+  /// approach's posture.
+  std::optional<Aim> riseAim(const double* state) const;
   /// A control that drives the goal link straight at `target` and turns it towards
   /// `orientation` (as far as the goal cares about turns); with `maxSpeed` > 0 (m/s) no
   /// faster than that and at most a stride far.

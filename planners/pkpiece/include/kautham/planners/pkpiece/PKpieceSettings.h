@@ -59,6 +59,9 @@ struct PKpieceSettings {
   /// How far the corridor's pushes point the gripper down (rad), so the wrist passes over the
   /// objects behind.
   double corridorPitch;
+  /// How far a push points the gripper down (rad) when no stand-off beside the object has room
+  /// for it at its own pitch (0: never steeper than its own).
+  double crowdedPitch;
   /// The goal steering's last move goes straight in along the approach from this far behind
   /// the goal point (m; 0: straight at the goal point from wherever the link is).
   double finalApproach;
@@ -210,6 +213,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0.0, 1.5)
                    .describe("how far the corridor's pushes point the gripper down (rad), so "
                              "the wrist passes over the objects behind"))
+          .add(&S::crowdedPitch,
+               Parameter::real("crowded_pitch")
+                   .byDefault(0.0)
+                   .range(0.0, 1.5)
+                   .describe("how far a push points the gripper down (rad) when no stand-off "
+                             "beside the object leaves its footprint room at the push's own "
+                             "pitch, if that leaves more (0: never steeper than its own)"))
           .add(&S::finalApproach,
                Parameter::real("final_approach")
                    .byDefault(0.05)
