@@ -129,9 +129,9 @@ std::optional<GoalSteering::Aim> GoalSteering::riseAim(const double* state) cons
   // the orientation's third column).
   const double steeper = std::asin(std::clamp(approachTurn_.col(2).z(), -1.0, 1.0)) -
                          std::asin(std::clamp(turn.col(2).z(), -1.0, 1.0));
+  if (steeper <= kLargeTurn) return std::nullopt;
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const double travel = clearing_.travelHeight();
-  if (steeper <= kLargeTurn) return std::nullopt;
   // Up first, turned as it is; there, turned in place (turned on the way down, its fingers
   // swung into yumi_clutter_30's target).
   if (link.z() < travel - kOnApproachLine)

@@ -58,6 +58,10 @@ struct PushSettings {
 /// cans behind the one pushed. The free space's blocker counts among them when it reaches
 /// behind the goal point.
 ///
+/// Where neither stand-off leaves the gripper's footprint room (it reaches 12 cm back held
+/// level, less as it points down), the push goes pitched down by `crowdedPitch` instead, if that
+/// leaves more: the dense scenes' corridors hold cans 1-2 cm apart.
+///
 /// The waypoints follow the object as it moves, so a push in progress goes on until the
 /// object leaves the free space (or the corridor). `remaining` is the length of the rest of
 /// this plan and on to the goal: the goal bias ranks blocked states by it, so the motions
