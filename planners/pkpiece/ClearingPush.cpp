@@ -123,18 +123,23 @@ const ClearingPush::Posture& ClearingPush::choosePosture(const double* state, st
     // A push under way keeps the posture the gripper is nearest: the pitch it has now.
     return nearer(pitchNow(state), own, crowded_);
   }
-  const double ownRoom = std::max(room(state, standOff(centre, own, 1.0), blocker, own.reach),
-                                  room(state, standOff(centre, own, -1.0), blocker, own.reach));
+  const double ownRoom = widerRoom(state, centre, blocker, own);
   if (ownRoom >= kCrowdedRoom) return own;
-  const double crowdedRoom =
-      std::max(room(state, standOff(centre, crowded_, 1.0), blocker, crowded_.reach),
-               room(state, standOff(centre, crowded_, -1.0), blocker, crowded_.reach));
-  return crowdedRoom > ownRoom ? crowded_ : own;
+  return widerRoom(state, centre, blocker, crowded_) > ownRoom ? crowded_ : own;
+}
+
+double ClearingPush::widerRoom(const double* state, const Eigen::Vector3d& centre,
+                               std::size_t blocker, const Posture& posture) const {
+  return std::max(room(state, standOff(centre, posture, 1.0), blocker, posture.reach),
+                  room(state, standOff(centre, posture, -1.0), blocker, posture.reach));
+}
+
+double pitchBelowLevel(const Eigen::Matrix3d& turn) {
+  return -std::asin(std::clamp(turn.col(2).z(), -1.0, 1.0));
 }
 
 double ClearingPush::pitchNow(const double* state) const {
-  const Eigen::Vector3d pointing = context_.layout().goalLinkOrientation(state).col(2);
-  return -std::asin(std::clamp(pointing.z(), -1.0, 1.0));
+  return pitchBelowLevel(context_.layout().goalLinkOrientation(state));
 }
 
 const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a,
@@ -190,11 +195,12 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   // On the way up from a push the gripper keeps the posture it pushed with: turned low, next to
   // the cans it had pushed, the gripper swept one (yumi_clutter_30, can3, turning from the
   // corridor's steep push to the free space's level one).
-  const Posture& held =
-      transfer.leg == Transfer::Leg::Up
-          ? nearer(pitchNow(state), nearer(pitchNow(state), push_, corridor_), crowded_)
-          : posture;
-  return Step{transfer.waypoint, held.orientation,
+  const Posture* held = &posture;
+  if (transfer.leg == Transfer::Leg::Up) {
+    const double pitch = pitchNow(state);
+    held = &nearer(pitch, nearer(pitch, push_, corridor_), crowded_);
+  }
+  return Step{transfer.waypoint, held->orientation,
               transfer.length + (end - start).norm() + endToGoal, false};
 }
 

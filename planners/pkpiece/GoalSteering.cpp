@@ -125,11 +125,8 @@ std::optional<GoalSteering::Aim> GoalSteering::riseAim(const double* state) cons
   if (!clearingOn_ || !spec.approach || std::abs(spec.approach->normalized().z()) >= kSideApproach)
     return std::nullopt;
   const Eigen::Matrix3d turn = context_.layout().goalLinkOrientation(state);
-  // How much further down the gripper points than the approach asks (the fingers' direction is
-  // the orientation's third column).
-  const double steeper = std::asin(std::clamp(approachTurn_.col(2).z(), -1.0, 1.0)) -
-                         std::asin(std::clamp(turn.col(2).z(), -1.0, 1.0));
-  if (steeper <= kLargeTurn) return std::nullopt;
+  // How much further down the gripper points than the approach asks.
+  if (pitchBelowLevel(turn) - pitchBelowLevel(approachTurn_) <= kLargeTurn) return std::nullopt;
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const double travel = clearing_.travelHeight();
   // Up first, turned as it is; there, turned in place (turned on the way down, its fingers

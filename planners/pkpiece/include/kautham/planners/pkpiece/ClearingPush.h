@@ -22,6 +22,10 @@ struct Transfer {
 Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target, double height,
                       double over, double below);
 
+/// How far below level (rad) a gripper turned as `turn` points: its approach, where the fingers
+/// point, is the third column.
+double pitchBelowLevel(const Eigen::Matrix3d& turn);
+
 /// How the clearing push is done: p-KPIECE's push_pitch, clear_behind, corridor_pitch,
 /// push_below_centre and push_speed parameters.
 struct PushSettings {
@@ -33,8 +37,8 @@ struct PushSettings {
   double belowCentre = 0.015;
   double speed = 0.1;  ///< m/s the goal link pushes at
   /// rad a push points down when no stand-off beside the object has room for the gripper at
-  /// its own pitch, if that leaves more room (the footprint is shorter as it points down); not
-  /// above the push's own pitch: never.
+  /// its own pitch, if that leaves more room (the footprint is shorter as it points down); at
+  /// or below the push's own pitch (the default 0): never.
   double crowdedPitch = 0.0;
 };
 
@@ -110,6 +114,9 @@ class ClearingPush {
   /// The stand-off beside the object on the `side` (+1 or -1) across the approach.
   Eigen::Vector3d standOff(const Eigen::Vector3d& centre, const Posture& posture,
                            double side) const;
+  /// The more room of the two stand-offs beside the object held as `posture` (room()).
+  double widerRoom(const double* state, const Eigen::Vector3d& centre, std::size_t blocker,
+                   const Posture& posture) const;
   /// How far the gripper points down in `state` (rad).
   double pitchNow(const double* state) const;
   /// Of `a` and `b`, the posture whose pitch is nearer `pitch` (`a` if as near).
