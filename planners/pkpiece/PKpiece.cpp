@@ -285,7 +285,9 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
       steered = true;
       ++steeredCandidates_;
     }
-  std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, withParticles());
+  // Every candidate runs on through the goal, so that settleInGoal can end it deep inside: one
+  // that stopped where it entered would end on the region's border (with particles or without).
+  std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, true);
   candidateCount_ += motions.size();
   std::vector<Candidate> valid;
   for (std::size_t c = 0; c < motions.size(); ++c) {
