@@ -84,7 +84,7 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
     return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
   if (const std::optional<Aim> up = riseAim(start))
     return steer(start, up->position, up->orientation, kMoveSpeed);
-  return steer(start, context_.goal().position(), approachTurn_, approachSpeed_);
+  return steer(start, context_.goal().position(), approachTurn_, approachSpeed_, Strides::Even);
 }
 
 std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) const {
@@ -163,15 +163,16 @@ std::optional<Eigen::MatrixXd> GoalSteering::probedJacobian(const double* start)
 
 std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eigen::Vector3d& target,
                                                  const Eigen::Matrix3d& orientation,
-                                                 double maxSpeed) const {
+                                                 double maxSpeed, Strides strides) const {
   const auto& si = context_.spaceInformation();
   const physics::WorldLayout& layout = context_.layout();
-  const double stride = strideAt(maxSpeed);
+  const double longest = strideAt(maxSpeed);
   if (kinematic_) {
     Eigen::Vector3d aim = target;
     const Eigen::Vector3d from = layout.goalLinkPosition(start);
-    if (maxSpeed > 0.0 && (target - from).norm() > stride)
-      aim = from + stride * (target - from).normalized();
+    const double distance = (target - from).norm();
+    if (maxSpeed > 0.0 && distance > longest)
+      aim = from + strideOf(distance, longest, strides) * (target - from).normalized();
     if (std::optional<NominalMotion> motion =
             kinematic_->towards(start, aim, orientation, maxSpeed))
       return motion;
@@ -189,7 +190,8 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   Eigen::Matrix<double, 6, 1> toGo;
   toGo.head<3>() = target - layout.goalLinkPosition(start);
   toGo.tail<3>() = kMetresPerRadian * turnRows * turnTo(startTurn, orientation);
-  if (maxSpeed > 0.0 && toGo.norm() > stride) toGo *= stride / toGo.norm();
+  if (maxSpeed > 0.0 && toGo.norm() > longest)
+    toGo *= strideOf(toGo.norm(), longest, strides) / toGo.norm();
   const Eigen::Matrix<double, 6, 6> damped =
       jacobian * jacobian.transpose() +
       kDamping * kDamping * Eigen::Matrix<double, 6, 6>::Identity();
@@ -197,6 +199,14 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   // The fewest steps whose control stays within the limits (and the link below maxSpeed).
   return pacedMotion(*si, std::vector<double>(perStep.data(), perStep.data() + perStep.size()),
                      perStep.cwiseAbs().maxCoeff(), toGo.head<3>().norm(), maxSpeed);
+}
+
+double GoalSteering::strideOf(double distance, double longest, Strides strides) {
+  if (distance <= longest) return distance;
+  if (strides == Strides::Longest) return longest;
+  // The fewest equal strides: the last one ends on the target, not a full stride in from
+  // wherever the one before ended (inside the goal region, short of its centre).
+  return distance / std::ceil(distance / longest);
 }
 
 double GoalSteering::strideAt(double maxSpeed) const {

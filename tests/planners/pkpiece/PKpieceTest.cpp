@@ -81,6 +81,16 @@ TEST(PKpieceTest, WithoutUncertaintyAPlanEndsDeepInTheGoalNotWhereItEntered) {
   EXPECT_LT(run.replay.finalGoalDistance, 0.01);  // half the tolerance: the margin
 }
 
+TEST(PKpieceTest, ACappedLastMoveInStridesEndsOnTheGoalPointNotAStrideIntoTheRegion) {
+  // yumi_clutter_5 seed 2: the last move, capped at 0.15 m/s, goes in strides of at most 10 cm.
+  // A full stride first (session 18) entered the 2 cm region and ended 1.1 cm short of the goal
+  // point; cut into equal strides, the last one ends on it.
+  const PlanRun run = plan("problems/yumi_clutter_5.xml", "p-KPIECE", 2);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_LT(run.replay.finalGoalDistance, 0.005);
+}
+
 TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
                            {{"particles", "5"}, {"candidates", "4"}});

@@ -82,11 +82,17 @@ class GoalSteering {
   /// push), straight up to that height, turned as it is; there, turned in place to the
   /// approach's posture.
   std::optional<Aim> riseAim(const double* state) const;
+  /// How a move longer than a stride is cut: a longest stride first (the tree steers again
+  /// from its end), or into the fewest equal strides, so that the last ends on the target.
+  enum class Strides { Longest, Even };
   /// A control that drives the goal link straight at `target` and turns it towards
   /// `orientation` (as far as the goal cares about turns); with `maxSpeed` > 0 (m/s) no
-  /// faster than that and at most a stride far.
+  /// faster than that and at most a stride far, cut as `strides` says.
   std::optional<NominalMotion> steer(const double* start, const Eigen::Vector3d& target,
-                                     const Eigen::Matrix3d& orientation, double maxSpeed) const;
+                                     const Eigen::Matrix3d& orientation, double maxSpeed,
+                                     Strides strides = Strides::Longest) const;
+  /// How far the next stride goes of `distance` still to go, at most `longest`.
+  static double strideOf(double distance, double longest, Strides strides);
   /// The longest straight move aimed for at `maxSpeed` (m/s; 0: no limit): kMaxStride, or
   /// less where a motion of the longest control duration would have to go faster.
   double strideAt(double maxSpeed) const;
