@@ -190,8 +190,9 @@ std::optional<NominalMotion> GoalSteering::steer(const double* start, const Eige
   Eigen::Matrix<double, 6, 1> toGo;
   toGo.head<3>() = target - layout.goalLinkPosition(start);
   toGo.tail<3>() = kMetresPerRadian * turnRows * turnTo(startTurn, orientation);
-  if (maxSpeed > 0.0 && toGo.norm() > longest)
-    toGo *= strideOf(toGo.norm(), longest, strides) / toGo.norm();
+  const double toGoLength = toGo.norm();
+  if (maxSpeed > 0.0 && toGoLength > longest)
+    toGo *= strideOf(toGoLength, longest, strides) / toGoLength;
   const Eigen::Matrix<double, 6, 6> damped =
       jacobian * jacobian.transpose() +
       kDamping * kDamping * Eigen::Matrix<double, 6, 6>::Identity();
