@@ -26,27 +26,16 @@ struct LinkPlacement {
   Eigen::Isometry3d pose;
 };
 
-std::optional<int> bodyNamed(const physics::WorldLayout& layout, const std::string& name) {
-  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
-    if (layout.bodies[b].name == name) return static_cast<int>(b);
-  return std::nullopt;
-}
-
-/// Links are placed from the zero configuration: within a group, fixed joints keep the
-/// relative poses whatever the joints do; the static group stays where the world built it.
+/// The world records where each robot link is (physics/WorldBuilder): on a body, or built
+/// into the static base.
 std::optional<LinkPlacement> placeLink(const core::RobotInstance& robot,
-                                       const physics::WorldLayout& layout,
-                                       const std::vector<Eigen::Isometry3d>& zero, int link) {
-  const core::KinematicModel& model = robot.model;
-  // The world names a body after its group's top link (physics/WorldBuilder).
-  const int top = model.rigidGroupTop(link);
-  LinkPlacement place{-1, robot.name + "/" + model.links[top].name, zero[link]};
-  if (model.links[top].parentJoint < 0) return place;
-  const std::optional<int> body = bodyNamed(layout, place.owner);
-  if (!body) return std::nullopt;  // a world of another robot: nothing to draw it on
-  place.body = *body;
-  place.pose = layout.bodies[*body].linkInBody * zero[top].inverse() * zero[link];
-  return place;
+                                       const physics::WorldLayout& layout, int link) {
+  if (static_cast<std::size_t>(link) >= layout.robotLinks.size()) return std::nullopt;
+  const physics::RobotLinkPlacement& at = layout.robotLinks[static_cast<std::size_t>(link)];
+  const std::string owner = at.body < 0
+                                ? robot.name + "/" + robot.model.links[robot.model.rootLink].name
+                                : layout.bodies[static_cast<std::size_t>(at.body)].name;
+  return LinkPlacement{at.body, owner, at.pose};
 }
 
 /// Reads visual meshes once per file and scale, simplified for the page.
@@ -118,11 +107,9 @@ json visualsJson(const core::Problem& problem, const physics::WorldLayout& layou
   bool anyVisual = false;
   for (const core::Link& link : model.links) anyVisual = anyVisual || !link.visuals.empty();
   if (!anyVisual) return visuals;
-  const std::vector<Eigen::Isometry3d> zero =
-      model.linkPoses(robot.home.isometry(), std::vector<double>(model.movableJoints().size()));
   VisualMeshes meshes;
   for (std::size_t l = 0; l < model.links.size(); ++l) {
-    const std::optional<LinkPlacement> place = placeLink(robot, layout, zero, static_cast<int>(l));
+    const std::optional<LinkPlacement> place = placeLink(robot, layout, static_cast<int>(l));
     if (!place) continue;
     for (auto& [entry, origin] : linkPicture(model.links[l], meshes)) {
       entry["owner"] = place->owner;

@@ -81,6 +81,7 @@ void World::restoreGeomOrder() {
 void World::setJointVelocities(const double* velocities) {
   for (std::size_t i = 0; i < actuators_.size(); ++i) {
     const Actuator& a = actuators_[i];
+    if (!a.joint) continue;  // built into the static base
     const double v = std::clamp(velocities[i], -a.maxVelocity, a.maxVelocity);
     if (a.type == core::JointType::Prismatic)
       dJointSetSliderParam(a.joint, dParamVel, v);
@@ -92,6 +93,11 @@ void World::setJointVelocities(const double* velocities) {
 void World::readJoints(double* positions, double* rates) const {
   for (std::size_t i = 0; i < actuators_.size(); ++i) {
     const Actuator& a = actuators_[i];
+    if (!a.joint) {  // built into the static base
+      positions[i] = a.heldAt;
+      rates[i] = 0.0;
+      continue;
+    }
     const bool prismatic = a.type == core::JointType::Prismatic;
     positions[i] = prismatic ? dJointGetSliderPosition(a.joint) : dJointGetHingeAngle(a.joint);
     rates[i] = prismatic ? dJointGetSliderPositionRate(a.joint) : dJointGetHingeAngleRate(a.joint);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <Eigen/Eigenvalues>
 
@@ -38,11 +39,17 @@ dGeomID createPrimitive(const core::Shape& shape) {
 
 /// Links rigidly attached to each other (through fixed joints) move as one ODE body.
 /// A group is named by its top link: the root, or a link whose parent joint moves.
+///
+/// A joint that no control moves (`held`: its value, by joint index) and that hangs from the
+/// static base is built into the base at that value: the YuMi's idle right arm is static
+/// geometry, not ten bodies locked by their stops that the solver must hold still every step
+/// (docs/physics.md, "Held joints").
 struct LinkGroups {
   std::vector<int> groupOf;                ///< link -> its group's top link
   std::vector<Eigen::Isometry3d> inGroup;  ///< link pose in its group's top link frame
 
-  explicit LinkGroups(const KinematicModel& model)
+  explicit LinkGroups(const KinematicModel& model,
+                      const std::vector<std::optional<double>>& held = {})
       : groupOf(model.links.size(), -1), inGroup(model.links.size()) {
     std::vector<int> pending{model.rootLink};
     groupOf[model.rootLink] = model.rootLink;
@@ -53,12 +60,23 @@ struct LinkGroups {
       for (int j : model.links[link].childJoints) {
         const core::Joint& joint = model.joints[j];
         const int child = joint.childLink;
-        const bool rigid = !joint.isMovable();
+        const std::size_t index = static_cast<std::size_t>(j);
+        const bool heldOnBase =
+            index < held.size() && held[index] && groupOf[link] == model.rootLink;
+        const bool rigid = !joint.isMovable() || heldOnBase;
+        const Eigen::Isometry3d step =
+            heldOnBase ? joint.origin * KinematicModel::jointMotion(joint, *held[index])
+                       : joint.origin;
         groupOf[child] = rigid ? groupOf[link] : child;
-        inGroup[child] = rigid ? inGroup[link] * joint.origin : Eigen::Isometry3d::Identity();
+        inGroup[child] = rigid ? inGroup[link] * step : Eigen::Isometry3d::Identity();
         pending.push_back(child);
       }
     }
+  }
+
+  /// Whether the joint is built into the static base.
+  bool inBase(const KinematicModel& model, int joint) const {
+    return groupOf[model.joints[joint].childLink] == model.rootLink;
   }
 
   std::vector<int> members(int top) const {
@@ -246,18 +264,26 @@ class World::Builder {
   void buildRobot(const core::Query& query) {
     const core::RobotInstance& robot = problem_.robot;
     const KinematicModel& model = robot.model;
-    const LinkGroups groups(model);
-    const Eigen::Isometry3d base = robot.home.isometry();
-    // Joints are created at the zero configuration, so ODE's zero matches the URDF's zero.
     const std::vector<int> movable = model.movableJoints();
-    const std::vector<Eigen::Isometry3d> zeroPoses =
-        model.linkPoses(base, std::vector<double>(movable.size(), 0.0));
+    const std::vector<double> initialValues = problem_.initialJointValues(query);
+    std::vector<std::optional<double>> held(model.joints.size());
+    for (std::size_t i = 0; i < movable.size(); ++i)
+      if (!robot.controls.moves(i)) held[static_cast<std::size_t>(movable[i])] = initialValues[i];
+    const LinkGroups groups(model, held);
+    const Eigen::Isometry3d base = robot.home.isometry();
+    // Joints are created at the zero configuration, so ODE's zero matches the URDF's zero; the
+    // joints built into the base are where they stay.
+    std::vector<double> zero(movable.size(), 0.0);
+    for (std::size_t i = 0; i < movable.size(); ++i)
+      if (groups.inBase(model, movable[i])) zero[i] = initialValues[i];
+    const std::vector<Eigen::Isometry3d> zeroPoses = model.linkPoses(base, zero);
 
     addGeoms(model, groups, model.rootLink, GeomTag::Kind::RobotBase, nullptr, base,
              robot.name + "/" + model.links[model.rootLink].name);
     std::vector<dBodyID> bodyOfGroup(model.links.size(), nullptr);
     std::vector<int> bodyIndexOfGroup(model.links.size(), -1);
     for (int j : movable) {
+      if (groups.inBase(model, j)) continue;
       const int child = model.joints[j].childLink;
       bodyIndexOfGroup[child] = static_cast<int>(world_.bodies_.size());
       BodyInfo info{robot.name + "/" + model.links[child].name, BodyRole::Robot, -1, {}};
@@ -266,17 +292,34 @@ class World::Builder {
       dBodySetGravityMode(body, 0);  // the arm holds itself: its motors need not fight gravity
       bodyOfGroup[child] = body;
     }
-    for (int j : movable) createActuator(model, j, zeroPoses, groups, bodyOfGroup);
+    for (std::size_t i = 0; i < movable.size(); ++i) {
+      if (groups.inBase(model, movable[i]))
+        addBaseJoint(model.joints[movable[i]], initialValues[i]);
+      else
+        createActuator(model, movable[i], zeroPoses, groups, bodyOfGroup);
+    }
 
-    const std::vector<double> initialValues = problem_.initialJointValues(query);
     const std::vector<Eigen::Isometry3d> initial = model.linkPoses(base, initialValues);
     for (int j : movable) {
+      if (groups.inBase(model, j)) continue;
       const int child = model.joints[j].childLink;
       const BodyInfo& info = world_.layout_.bodies[bodyIndexOfGroup[child]];
       setBodyPose(bodyOfGroup[child], initial[child] * info.linkInBody.inverse());
     }
     lockHeldJoints(initialValues);
+    placeLinks(model, groups, base, bodyIndexOfGroup);
     locateGoalLink(query, groups, bodyIndexOfGroup);
+  }
+
+  void placeLinks(const KinematicModel& model, const LinkGroups& groups,
+                  const Eigen::Isometry3d& base, const std::vector<int>& bodyIndexOfGroup) {
+    WorldLayout& layout = world_.layout_;
+    for (std::size_t link = 0; link < model.links.size(); ++link) {
+      const int body = bodyIndexOfGroup[static_cast<std::size_t>(groups.groupOf[link])];
+      const Eigen::Isometry3d& top =
+          body < 0 ? base : layout.bodies[static_cast<std::size_t>(body)].linkInBody;
+      layout.robotLinks.push_back({body, top * groups.inGroup[link]});
+    }
   }
 
   void createActuator(const KinematicModel& model, int j,
@@ -305,6 +348,15 @@ class World::Builder {
       addArmature(child);
     }
     world_.actuators_.push_back({joint.name, id, joint.type, joint.maxVelocity});
+    const bool limited = joint.type != core::JointType::Continuous;
+    world_.layout_.joints.push_back({joint.name, limited ? joint.lower : 0.0,
+                                     limited ? joint.upper : 0.0, joint.maxVelocity, limited});
+  }
+
+  /// A held joint built into the static base: no ODE joint; it reads as its value, and its
+  /// value is checked against its limits as any held joint's.
+  void addBaseJoint(const core::Joint& joint, double value) {
+    world_.actuators_.push_back({joint.name, nullptr, joint.type, joint.maxVelocity, value});
     const bool limited = joint.type != core::JointType::Continuous;
     world_.layout_.joints.push_back({joint.name, limited ? joint.lower : 0.0,
                                      limited ? joint.upper : 0.0, joint.maxVelocity, limited});
@@ -360,13 +412,14 @@ class World::Builder {
     const core::ControlSet& controls = problem_.robot.controls;
     for (std::size_t i = 0; i < world_.actuators_.size(); ++i) {
       if (controls.moves(i)) continue;
+      world_.layout_.joints[i].held = true;
       const Actuator& a = world_.actuators_[i];
+      if (!a.joint) continue;  // built into the base
       const auto setParam =
           a.type == core::JointType::Prismatic ? &dJointSetSliderParam : &dJointSetHingeParam;
       // High first: ODE ignores a low stop above the current high stop.
       setParam(a.joint, dParamHiStop, initialValues[i]);
       setParam(a.joint, dParamLoStop, initialValues[i]);
-      world_.layout_.joints[i].held = true;
     }
   }
 

@@ -55,6 +55,43 @@ TEST(ControlSetPhysics, KukaFingersStayPutWhileTheArmMoves) {
   EXPECT_NEAR(after[8], before[8], 1e-3);
 }
 
+TEST(ControlSetPhysics, YumisIdleRightArmIsBuiltIntoTheStaticBaseWhereItsOffsetPutsIt) {
+  ContextFixture scene("problems/yumi_clutter_5.xml");
+  const WorldLayout& layout = scene.context.layout();
+  const core::KinematicModel& model = scene.problem.robot.model;
+  // The right arm and its fingers hang from the base through joints no control moves: no
+  // bodies of theirs; the left arm's links and fingers (held, but on the moving arm) are.
+  for (const BodyInfo& body : layout.bodies) {
+    const std::string& name = body.name;
+    EXPECT_FALSE(name.size() > 2 && name.compare(name.size() - 2, 2, "_r") == 0) << name;
+    EXPECT_EQ(name.find("yumi_r_"), std::string::npos) << name;
+  }
+  EXPECT_NO_THROW(scene.body("yumi/yumi_link_7_l"));
+  EXPECT_NO_THROW(scene.body("yumi/yumi_l_finger_right"));
+  // Its links stand, static, where the query's start puts them.
+  const std::vector<double> start = jointPositions(scene);
+  const std::vector<Eigen::Isometry3d> poses =
+      model.linkPoses(scene.problem.robot.home.isometry(), start);
+  for (const std::string link : {"yumi_link_1_r", "yumi_link_7_r", "yumi_right_tcp"}) {
+    const std::size_t l = static_cast<std::size_t>(*model.findLink(link));
+    EXPECT_EQ(layout.robotLinks.at(l).body, -1) << link;
+    EXPECT_TRUE(layout.robotLinks.at(l).pose.isApprox(poses[l], 1e-9)) << link;
+  }
+  std::size_t staticShapes = 0;
+  for (const ShapeInfo& shape : layout.shapes)
+    staticShapes += shape.role == "robot" && shape.body < 0 ? 1u : 0u;
+  EXPECT_GT(staticShapes, 8u);  // the body and the right arm's links collide still
+  // Its joints read as their held values while the left arm moves, to the last bit.
+  const std::size_t rightOne = 9;
+  ASSERT_EQ(layout.joints[rightOne].name, "yumi_joint_1_r");
+  EXPECT_TRUE(layout.joints[rightOne].held);
+  EXPECT_EQ(scene.driveControls({0.3, -0.3, 0.2, 0.3, 0.0, 0.2, 0.5}, 6), Violation::None);
+  const std::vector<double> after = jointPositions(scene);
+  for (std::size_t j = rightOne; j < after.size(); ++j)
+    EXPECT_EQ(after[j], start[j]) << layout.joints[j].name;
+  EXPECT_GT(std::abs(after[0] - start[0]), 0.05);
+}
+
 /// kuka_cans_5 with its arm driven by one control that combines two joints.
 core::Problem kukaWithCombinedControl() {
   const fs::path file =

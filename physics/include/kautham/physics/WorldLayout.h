@@ -33,6 +33,13 @@ struct ShapeInfo {
   std::string role;   ///< "robot", "fixed", "movable" or "target"
 };
 
+/// Where a robot link is: on a dynamic body, or built into the static base (the base itself,
+/// the links fixed to it, and the held joints' links that hang from it).
+struct RobotLinkPlacement {
+  int body = -1;  ///< index into WorldLayout::bodies; -1: static, `pose` is in the world
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the body frame, or the world
+};
+
 /// A robot joint as the state records it: its position and rate are part of every state, so
 /// validity can check joint limits and speeds without the physics engine.
 struct JointInfo {
@@ -42,7 +49,7 @@ struct JointInfo {
   double maxVelocity = 0.0;  ///< URDF velocity limit, rad/s or m/s
   bool limited = true;       ///< false for continuous joints
   /// No control moves it: locked at its start value (its rate is only solver jitter, which
-  /// the speed check ignores).
+  /// the speed check ignores), or built into the static base if it hangs from it.
   bool held = false;
 };
 
@@ -70,7 +77,8 @@ class WorldLayout {
   std::vector<BodyInfo> bodies;
   std::vector<ShapeInfo> shapes;
   std::vector<JointInfo> joints;  ///< the robot's movable joints, in KinematicModel order
-  int goalBody = -1;              ///< the body that carries the goal link
+  std::vector<RobotLinkPlacement> robotLinks;  ///< every robot link, in KinematicModel order
+  int goalBody = -1;                           ///< the body that carries the goal link
   Eigen::Isometry3d goalLinkInBody = Eigen::Isometry3d::Identity();
 
   std::size_t stateSize() const { return flagsIndex() + 1; }
