@@ -81,7 +81,7 @@ void World::restoreGeomOrder() {
 void World::setJointVelocities(const double* velocities) {
   for (std::size_t i = 0; i < actuators_.size(); ++i) {
     const Actuator& a = actuators_[i];
-    if (!a.joint) continue;  // held rigid
+    if (!a.joint) continue;  // built into the static base
     const double v = std::clamp(velocities[i], -a.maxVelocity, a.maxVelocity);
     if (a.type == core::JointType::Prismatic)
       dJointSetSliderParam(a.joint, dParamVel, v);
@@ -93,7 +93,7 @@ void World::setJointVelocities(const double* velocities) {
 void World::readJoints(double* positions, double* rates) const {
   for (std::size_t i = 0; i < actuators_.size(); ++i) {
     const Actuator& a = actuators_[i];
-    if (!a.joint) {  // held rigid
+    if (!a.joint) {  // built into the static base
       positions[i] = a.heldAt;
       rates[i] = 0.0;
       continue;

@@ -40,10 +40,10 @@ dGeomID createPrimitive(const core::Shape& shape) {
 /// Links rigidly attached to each other (through fixed joints) move as one ODE body.
 /// A group is named by its top link: the root, or a link whose parent joint moves.
 ///
-/// A joint that no control moves (`held`: its value, by joint index) is rigid too, at that
-/// value: the YuMi's idle right arm is part of the static base, the fingers part of their
-/// wrist's body, not bodies locked by their joints' stops that the solver must hold still
-/// every step (docs/physics.md, "Held joints").
+/// A joint that no control moves (`held`: its value, by joint index) and that hangs from the
+/// static base is built into the base at that value: the YuMi's idle right arm is static
+/// geometry, not ten bodies locked by their stops that the solver must hold still every step
+/// (docs/physics.md, "Held joints").
 struct LinkGroups {
   std::vector<int> groupOf;                ///< link -> its group's top link
   std::vector<Eigen::Isometry3d> inGroup;  ///< link pose in its group's top link frame
@@ -61,10 +61,12 @@ struct LinkGroups {
         const core::Joint& joint = model.joints[j];
         const int child = joint.childLink;
         const std::size_t index = static_cast<std::size_t>(j);
-        const bool isHeld = index < held.size() && held[index].has_value();
-        const bool rigid = !joint.isMovable() || isHeld;
+        const bool heldOnBase =
+            index < held.size() && held[index] && groupOf[link] == model.rootLink;
+        const bool rigid = !joint.isMovable() || heldOnBase;
         const Eigen::Isometry3d step =
-            isHeld ? joint.origin * KinematicModel::jointMotion(joint, *held[index]) : joint.origin;
+            heldOnBase ? joint.origin * KinematicModel::jointMotion(joint, *held[index])
+                       : joint.origin;
         groupOf[child] = rigid ? groupOf[link] : child;
         inGroup[child] = rigid ? inGroup[link] * step : Eigen::Isometry3d::Identity();
         pending.push_back(child);
@@ -72,10 +74,9 @@ struct LinkGroups {
     }
   }
 
-  /// Whether the (movable) joint is held rigid: its child is not the top of a group.
-  bool heldRigid(const KinematicModel& model, int joint) const {
-    const int child = model.joints[joint].childLink;
-    return groupOf[child] != child;
+  /// Whether the joint is built into the static base.
+  bool inBase(const KinematicModel& model, int joint) const {
+    return groupOf[model.joints[joint].childLink] == model.rootLink;
   }
 
   std::vector<int> members(int top) const {
@@ -271,10 +272,10 @@ class World::Builder {
     const LinkGroups groups(model, held);
     const Eigen::Isometry3d base = robot.home.isometry();
     // Joints are created at the zero configuration, so ODE's zero matches the URDF's zero; the
-    // held joints are where they stay.
+    // joints built into the base are where they stay.
     std::vector<double> zero(movable.size(), 0.0);
     for (std::size_t i = 0; i < movable.size(); ++i)
-      if (groups.heldRigid(model, movable[i])) zero[i] = initialValues[i];
+      if (groups.inBase(model, movable[i])) zero[i] = initialValues[i];
     const std::vector<Eigen::Isometry3d> zeroPoses = model.linkPoses(base, zero);
 
     addGeoms(model, groups, model.rootLink, GeomTag::Kind::RobotBase, nullptr, base,
@@ -282,7 +283,7 @@ class World::Builder {
     std::vector<dBodyID> bodyOfGroup(model.links.size(), nullptr);
     std::vector<int> bodyIndexOfGroup(model.links.size(), -1);
     for (int j : movable) {
-      if (groups.heldRigid(model, j)) continue;
+      if (groups.inBase(model, j)) continue;
       const int child = model.joints[j].childLink;
       bodyIndexOfGroup[child] = static_cast<int>(world_.bodies_.size());
       BodyInfo info{robot.name + "/" + model.links[child].name, BodyRole::Robot, -1, {}};
@@ -292,19 +293,20 @@ class World::Builder {
       bodyOfGroup[child] = body;
     }
     for (std::size_t i = 0; i < movable.size(); ++i) {
-      if (groups.heldRigid(model, movable[i]))
-        addHeldJoint(model.joints[movable[i]], initialValues[i]);
+      if (groups.inBase(model, movable[i]))
+        addBaseJoint(model.joints[movable[i]], initialValues[i]);
       else
         createActuator(model, movable[i], zeroPoses, groups, bodyOfGroup);
     }
 
     const std::vector<Eigen::Isometry3d> initial = model.linkPoses(base, initialValues);
     for (int j : movable) {
-      if (groups.heldRigid(model, j)) continue;
+      if (groups.inBase(model, j)) continue;
       const int child = model.joints[j].childLink;
       const BodyInfo& info = world_.layout_.bodies[bodyIndexOfGroup[child]];
       setBodyPose(bodyOfGroup[child], initial[child] * info.linkInBody.inverse());
     }
+    lockHeldJoints(initialValues);
     placeLinks(model, groups, base, bodyIndexOfGroup);
     locateGoalLink(query, groups, bodyIndexOfGroup);
   }
@@ -351,16 +353,13 @@ class World::Builder {
                                      limited ? joint.upper : 0.0, joint.maxVelocity, limited});
   }
 
-  /// A joint no control moves, held rigid where the query starts it (LinkGroups): no ODE joint;
-  /// it reads as its value, which is checked against its limits as any joint's. Locked by its
-  /// stops instead, the solver had to hold it still every step, with 0.2 mm of jitter, and a
-  /// motor alone let the KUKA's fingers slip at 0.19 m/s (docs/physics.md, "Held joints").
-  void addHeldJoint(const core::Joint& joint, double value) {
+  /// A held joint built into the static base: no ODE joint; it reads as its value, and its
+  /// value is checked against its limits as any held joint's.
+  void addBaseJoint(const core::Joint& joint, double value) {
     world_.actuators_.push_back({joint.name, nullptr, joint.type, joint.maxVelocity, value});
     const bool limited = joint.type != core::JointType::Continuous;
     world_.layout_.joints.push_back({joint.name, limited ? joint.lower : 0.0,
-                                     limited ? joint.upper : 0.0, joint.maxVelocity, limited,
-                                     true});
+                                     limited ? joint.upper : 0.0, joint.maxVelocity, limited});
   }
 
   // Joint stops and motors with QuickStep's default 20 iterations (docs/physics.md, "Joint
@@ -406,6 +405,24 @@ class World::Builder {
     dBodySetMass(body, &mass);
   }
 
+  /// A joint that no control moves (a gripper's fingers while the arm pushes) is locked where
+  /// it starts: both stops at its initial value. Held by its motor alone, a light finger slips
+  /// under the arm's accelerations (0.12 m/s with a 20 N finger motor on the KUKA).
+  void lockHeldJoints(const std::vector<double>& initialValues) {
+    const core::ControlSet& controls = problem_.robot.controls;
+    for (std::size_t i = 0; i < world_.actuators_.size(); ++i) {
+      if (controls.moves(i)) continue;
+      world_.layout_.joints[i].held = true;
+      const Actuator& a = world_.actuators_[i];
+      if (!a.joint) continue;  // built into the base
+      const auto setParam =
+          a.type == core::JointType::Prismatic ? &dJointSetSliderParam : &dJointSetHingeParam;
+      // High first: ODE ignores a low stop above the current high stop.
+      setParam(a.joint, dParamHiStop, initialValues[i]);
+      setParam(a.joint, dParamLoStop, initialValues[i]);
+    }
+  }
+
   void locateGoalLink(const core::Query& query, const LinkGroups& groups,
                       const std::vector<int>& bodyIndexOfGroup) {
     const KinematicModel& model = problem_.robot.model;
@@ -413,8 +430,7 @@ class World::Builder {
     const int top = groups.groupOf[link];
     if (bodyIndexOfGroup[top] < 0)
       throw core::InputError(query.goal.where, "goal link '" + query.goal.link +
-                                                   "' is fixed to the robot's base (or joined to "
-                                                   "it only by joints no control moves): it can "
+                                                   "' is fixed to the robot's base: it can "
                                                    "never move to the goal");
     WorldLayout& layout = world_.layout_;
     layout.goalBody = bodyIndexOfGroup[top];

@@ -36,10 +36,10 @@ struct RobotTouches {
 /// A robot joint driven by a velocity motor: one control of the planner.
 struct Actuator {
   std::string name;
-  dJointID joint = nullptr;  ///< none for a joint no control moves: rigid at `heldAt`
+  dJointID joint = nullptr;  ///< none for a joint built into the static base (heldAt)
   core::JointType type = core::JointType::Revolute;
   double maxVelocity = 0.0;
-  double heldAt = 0.0;  ///< the value of a joint held rigid
+  double heldAt = 0.0;  ///< the value of a joint built into the static base
 };
 
 /// The ODE world built from a problem: a flat collision space, fixed obstacles as static

@@ -33,8 +33,8 @@ struct ShapeInfo {
   std::string role;   ///< "robot", "fixed", "movable" or "target"
 };
 
-/// Where a robot link is: on a dynamic body, or part of the static base (the base itself, and
-/// the links joined to it by fixed joints and joints no control moves).
+/// Where a robot link is: on a dynamic body, or built into the static base (the base itself,
+/// the links fixed to it, and the held joints' links that hang from it).
 struct RobotLinkPlacement {
   int body = -1;  ///< index into WorldLayout::bodies; -1: static, `pose` is in the world
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< in the body frame, or the world
@@ -48,8 +48,8 @@ struct JointInfo {
   double upper = 0.0;
   double maxVelocity = 0.0;  ///< URDF velocity limit, rad/s or m/s
   bool limited = true;       ///< false for continuous joints
-  /// No control moves it: held rigid at its start value (its links are part of its parent's
-  /// body, or of the static base); its rate is always 0.
+  /// No control moves it: locked at its start value (its rate is only solver jitter, which
+  /// the speed check ignores), or built into the static base if it hangs from it.
   bool held = false;
 };
 
