@@ -430,8 +430,10 @@ class World::Builder {
     const int top = groups.groupOf[link];
     if (bodyIndexOfGroup[top] < 0)
       throw core::InputError(query.goal.where, "goal link '" + query.goal.link +
-                                                   "' is fixed to the robot's base: it can "
-                                                   "never move to the goal");
+                                                   "' is fixed to the robot's base (or joined "
+                                                   "to it only by joints no control moves): it "
+                                                   "can never move to the goal; move its arm's "
+                                                   "joints in the control set");
     WorldLayout& layout = world_.layout_;
     layout.goalBody = bodyIndexOfGroup[top];
     layout.goalLinkInBody = layout.bodies[layout.goalBody].linkInBody * groups.inGroup[link];

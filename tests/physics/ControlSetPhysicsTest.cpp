@@ -92,6 +92,29 @@ TEST(ControlSetPhysics, YumisIdleRightArmIsBuiltIntoTheStaticBaseWhereItsOffsetP
   EXPECT_GT(std::abs(after[0] - start[0]), 0.05);
 }
 
+TEST(ControlSetPhysics, AGoalLinkThatOnlyHeldJointsJoinToTheBaseIsABadInputNamingIt) {
+  // yumi_clutter_5's goal is the left gripper's; a control set that moves only the right arm
+  // builds the left arm into the static base, where it can never reach the goal.
+  const fs::path file =
+      fs::temp_directory_path() / ("kautham_right_" + std::to_string(::getpid()) + ".cntr");
+  std::ofstream(file) << R"(<ControlSet>
+  <Control name="right axis 1" eigValue="1"><DOF name="yumi/yumi_joint_1_r" value="1"/></Control>
+</ControlSet>)";
+  core::Problem problem = core::loadProblem(repoFile("problems/yumi_clutter_5.xml"));
+  problem.robot.controls = core::loadControlSet(file, problem.robot.model, {});
+  fs::remove(file);
+  problem.queries.at(0).init = {0.5};
+  try {
+    ContextFixture scene(std::move(problem));
+    FAIL() << "built a world whose goal link cannot move";
+  } catch (const core::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("yumi_clutter_5.xml"), std::string::npos) << message;
+    EXPECT_NE(message.find("'yumi_left_tcp'"), std::string::npos) << message;
+    EXPECT_NE(message.find("no control moves"), std::string::npos) << message;
+  }
+}
+
 /// kuka_cans_5 with its arm driven by one control that combines two joints.
 core::Problem kukaWithCombinedControl() {
   const fs::path file =
