@@ -42,7 +42,7 @@ dGeomID createPrimitive(const core::Shape& shape) {
 ///
 /// A joint that no control moves (`held`: its value, by joint index) and that hangs from the
 /// static base is built into the base at that value: the YuMi's idle right arm is static
-/// geometry, not ten bodies locked by their stops that the solver must hold still every step
+/// geometry, not nine bodies locked by their stops that the solver must hold still every step
 /// (docs/physics.md, "Held joints").
 struct LinkGroups {
   std::vector<int> groupOf;                ///< link -> its group's top link
