@@ -294,7 +294,7 @@ class World::Builder {
     }
     for (std::size_t i = 0; i < movable.size(); ++i) {
       if (groups.inBase(model, movable[i]))
-        addBaseJoint(model.joints[movable[i]], initialValues[i]);
+        addActuator(model.joints[movable[i]], nullptr, initialValues[i]);
       else
         createActuator(model, movable[i], zeroPoses, groups, bodyOfGroup);
     }
@@ -347,16 +347,13 @@ class World::Builder {
       setLimitsAndMotor(id, joint, &dJointSetHingeParam);
       addArmature(child);
     }
-    world_.actuators_.push_back({joint.name, id, joint.type, joint.maxVelocity});
-    const bool limited = joint.type != core::JointType::Continuous;
-    world_.layout_.joints.push_back({joint.name, limited ? joint.lower : 0.0,
-                                     limited ? joint.upper : 0.0, joint.maxVelocity, limited});
+    addActuator(joint, id);
   }
 
-  /// A held joint built into the static base: no ODE joint; it reads as its value, and its
-  /// value is checked against its limits as any held joint's.
-  void addBaseJoint(const core::Joint& joint, double value) {
-    world_.actuators_.push_back({joint.name, nullptr, joint.type, joint.maxVelocity, value});
+  /// Records a movable joint: its actuator (`id`, or none for a held joint built into the
+  /// static base, which reads as `heldAt`) and what states and the validity check know of it.
+  void addActuator(const core::Joint& joint, dJointID id, double heldAt = 0.0) {
+    world_.actuators_.push_back({joint.name, id, joint.type, joint.maxVelocity, heldAt});
     const bool limited = joint.type != core::JointType::Continuous;
     world_.layout_.joints.push_back({joint.name, limited ? joint.lower : 0.0,
                                      limited ? joint.upper : 0.0, joint.maxVelocity, limited});
