@@ -180,9 +180,12 @@ class World::Builder {
     dGeomSetCollideBits(plane, tag->collidesWith());
   }
 
+  /// The shapes of the links in `top`'s group, on `body` or static (null). Each shape's owner is
+  /// `name`, or with `linkPrefix` the prefix and its own link's name (the robot's static base,
+  /// where links that no control moves join it, is several links).
   void addGeoms(const KinematicModel& model, const LinkGroups& groups, int top, GeomTag::Kind kind,
                 dBodyID body, const Eigen::Isometry3d& topInWorldOrBody, const std::string& name,
-                dSpaceID space = nullptr) {
+                dSpaceID space = nullptr, const std::string& linkPrefix = "") {
     const int bodyIndex = body ? static_cast<int>(world_.bodies_.size()) : -1;
     world_.tags_.push_back(std::make_unique<GeomTag>(GeomTag{kind, name, bodyIndex}));
     GeomTag* tag = world_.tags_.back().get();
@@ -195,7 +198,8 @@ class World::Builder {
         dGeomSetCategoryBits(geom, tag->category());
         dGeomSetCollideBits(geom, tag->collidesWith());
         const Eigen::Isometry3d pose = topInWorldOrBody * groups.inGroup[link] * collision.origin;
-        world_.layout_.shapes.push_back({collision.shape, bodyIndex, pose, name, roleName(kind)});
+        const std::string owner = linkPrefix.empty() ? name : linkPrefix + model.links[link].name;
+        world_.layout_.shapes.push_back({collision.shape, bodyIndex, pose, owner, roleName(kind)});
         const Eigen::Isometry3d geomPose = pose * Eigen::Translation3d(shift);
         dMatrix3 rotation;
         toOdeRotation(geomPose.linear(), rotation);
@@ -279,7 +283,7 @@ class World::Builder {
     const std::vector<Eigen::Isometry3d> zeroPoses = model.linkPoses(base, zero);
 
     addGeoms(model, groups, model.rootLink, GeomTag::Kind::RobotBase, nullptr, base,
-             robot.name + "/" + model.links[model.rootLink].name);
+             robot.name + "/" + model.links[model.rootLink].name, nullptr, robot.name + "/");
     std::vector<dBodyID> bodyOfGroup(model.links.size(), nullptr);
     std::vector<int> bodyIndexOfGroup(model.links.size(), -1);
     for (int j : movable) {

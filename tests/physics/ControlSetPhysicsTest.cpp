@@ -78,9 +78,14 @@ TEST(ControlSetPhysics, YumisIdleRightArmIsBuiltIntoTheStaticBaseWhereItsOffsetP
     EXPECT_TRUE(layout.robotLinks.at(l).pose.isApprox(poses[l], 1e-9)) << link;
   }
   std::size_t staticShapes = 0;
-  for (const ShapeInfo& shape : layout.shapes)
+  bool linkSevenNamed = false;
+  for (const ShapeInfo& shape : layout.shapes) {
     staticShapes += shape.role == "robot" && shape.body < 0 ? 1u : 0u;
+    // Each static shape is named by its own link (what the replay page shows), not the base's.
+    linkSevenNamed |= shape.body < 0 && shape.owner == "yumi/yumi_link_7_r";
+  }
   EXPECT_GT(staticShapes, 8u);  // the body and the right arm's links collide still
+  EXPECT_TRUE(linkSevenNamed);
   // Its joints read as their held values while the left arm moves, to the last bit.
   const std::size_t rightOne = 9;
   ASSERT_EQ(layout.joints[rightOne].name, "yumi_joint_1_r");
