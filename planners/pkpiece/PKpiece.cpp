@@ -295,6 +295,12 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
     Candidate candidate;
     candidate.control = std::move(motions[c].control);
     candidate.run = std::move(runs[c]);
+    // A run through the goal that never gets deep enough to end a plan is an ordinary motion:
+    // judged in full as a goal candidate, its particles would be spent for nothing.
+    if (candidate.run.reachedGoal && !getsDeepEnough(candidate.run)) {
+      candidate.run.reachedGoal = false;
+      candidate.run.goalFrom = 0;
+    }
     candidate.streamSeed = nextStreamSeed();
     candidate.fromPathBelief = from.pathBelief;
     candidate.steered = steered && c == 0;
@@ -361,20 +367,28 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
   // border, which a particle (or an execution with control noise) misses as often as it hits.
   // It ends at the step where most particles are inside too, and of equals (always, without
   // particles) where the nominal run is nearest the goal point.
+  // Only a step deep enough in the region may end a plan (goal_margin); a run that gets no
+  // deeper than that is an ordinary motion, which the goal bias grows on towards the goal point.
   const bool particles = withParticles();
   NominalRun& run = candidate.run;
-  unsigned bestStep = run.goalFrom;
+  const double deepEnough = settings_.goalMargin * goalTolerance();
+  unsigned bestStep = 0;
   unsigned bestCount = 0;
   double bestDistance = std::numeric_limits<double>::infinity();
   for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
     const unsigned count =
         particles ? candidate.verdict.inGoalAt(recordIndex(candidate, step)) : 0u;
     const double distance = context_.goal().distance(run.states[step - 1].data());
-    if (count > bestCount || (count == bestCount && distance < bestDistance)) {
+    if (distance > deepEnough) continue;
+    if (bestStep == 0 || count > bestCount || (count == bestCount && distance < bestDistance)) {
       bestCount = count;
       bestDistance = distance;
       bestStep = step;
     }
+  }
+  if (bestStep == 0) {
+    run.reachedGoal = false;
+    return;
   }
   if (particles) candidate.verdict = candidate.verdict.cutAt(recordIndex(candidate, bestStep));
   run.states.resize(bestStep);
@@ -382,6 +396,18 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
   run.steps = bestStep;
   candidate.pieceEnds = pieceEnds(run);
   if (!particles) candidate.recordAfter = candidate.pieceEnds;
+}
+
+bool PKpiece::getsDeepEnough(const NominalRun& run) const {
+  const double deepEnough = settings_.goalMargin * goalTolerance();
+  for (unsigned step = run.goalFrom; step > 0 && step <= run.steps; ++step)
+    if (context_.goal().distance(run.states[step - 1].data()) <= deepEnough) return true;
+  return false;
+}
+
+double PKpiece::goalTolerance() const {
+  const physics::GoalSpec& spec = context_.goal().spec();
+  return spec.joints.empty() ? spec.tolerance : spec.jointTolerance;
 }
 
 double PKpiece::solutionConfidence(const Candidate& c) const {

@@ -81,6 +81,21 @@ TEST(PKpieceTest, WithoutUncertaintyAPlanEndsDeepInTheGoalNotWhereItEntered) {
   EXPECT_LT(run.replay.finalGoalDistance, 0.01);  // half the tolerance: the margin
 }
 
+TEST(PKpieceTest, WithAGoalMarginAPlanEndsOnlyDeepInTheGoalRegion) {
+  // yumi_clutter_30 seed 1: after the crowded pushes the last move comes down onto the goal
+  // from above, and its duration runs out 1.8 cm from the goal point, inside the 2 cm region.
+  // With goal_margin 0.5 that is an ordinary motion, which the goal bias grows on.
+  const PlanRun edge = plan("problems/yumi_clutter_30.xml", "p-KPIECE", 1,
+                            {{"uncertainty", "0"}, {"goal_margin", "1"}});
+  const PlanRun deep = plan("problems/yumi_clutter_30.xml", "p-KPIECE", 1,
+                            {{"uncertainty", "0"}, {"goal_margin", "0.5"}});
+  ASSERT_TRUE(edge.outcome.solved);
+  ASSERT_TRUE(deep.outcome.solved);
+  EXPECT_TRUE(deep.replay.reachedGoal) << physics::toString(deep.replay.firstViolation);
+  EXPECT_GT(edge.replay.finalGoalDistance, 0.01);
+  EXPECT_LE(deep.replay.finalGoalDistance, 0.01);
+}
+
 TEST(PKpieceTest, ACappedLastMoveInStridesEndsOnTheGoalPointNotAStrideIntoTheRegion) {
   // yumi_clutter_5 seed 2: the last move, capped at 0.15 m/s, goes in strides of at most 10 cm.
   // A full stride first (session 18) entered the 2 cm region and ended 1.1 cm short of the goal

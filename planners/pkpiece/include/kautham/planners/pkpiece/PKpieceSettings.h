@@ -22,6 +22,10 @@ struct PKpieceSettings {
   /// often: the path belief to it times the fraction of its particles that end valid in the
   /// goal region (not in the paper: its belief judges validity, not the goal).
   double goalConfidence;
+  /// A candidate ends the search only where its nominal run is within this fraction of the
+  /// goal's tolerance of the goal point: a plan ending on the region's border is missed by half
+  /// of its executions. 1: anywhere in the region.
+  double goalMargin;
   /// Cells and motions are judged by the belief of the whole path to a motion (the product
   /// of its candidates' beliefs) rather than by the motion's own (docs/planners.md).
   bool pathBelief;
@@ -139,6 +143,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("estimated success a plan needs to end the search: the path belief "
                              "times the fraction of the last candidate's particles that end "
                              "valid in the goal"))
+          .add(&S::goalMargin,
+               Parameter::real("goal_margin")
+                   .byDefault(1.0)
+                   .range(0.0, 1.0)
+                   .describe("how deep in the goal region a plan must end: its nominal end within "
+                             "this fraction of the goal's tolerance of the goal point (1: "
+                             "anywhere in the region)"))
           .add(&S::pathBelief,
                Parameter::flag("path_belief")
                    .byDefault(1)
