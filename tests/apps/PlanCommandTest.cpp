@@ -118,6 +118,14 @@ TEST_F(PlanCommandTest, OutputFolderIsCreated) {
   EXPECT_TRUE(fs::is_regular_file(planFile));
 }
 
+TEST_F(PlanCommandTest, AGoalMarginNoPlanCouldMeetExitsTwoSayingTheRange) {
+  // goal_margin 0 would ask a plan to end exactly on the goal point: no plan ever could.
+  const CommandRun run =
+      kautham("plan problems/yumi_clutter_5.xml --set uncertainty=0 --set goal_margin=0");
+  EXPECT_EQ(run.exitCode, 2);
+  EXPECT_NE(run.output.find("'goal_margin' must be in [0.05, 1]"), std::string::npos) << run.output;
+}
+
 TEST_F(PlanCommandTest, MissingProblemFileExitsTwo) {
   const CommandRun run = kautham("plan no/such/problem.xml");
   EXPECT_EQ(run.exitCode, 2);

@@ -146,10 +146,10 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
           .add(&S::goalMargin,
                Parameter::real("goal_margin")
                    .byDefault(1.0)
-                   .range(0.0, 1.0)
+                   .range(0.05, 1.0)
                    .describe("how deep in the goal region a plan must end: its nominal end within "
                              "this fraction of the goal's tolerance of the goal point (1: "
-                             "anywhere in the region)"))
+                             "anywhere in the region; at 0 none could end)"))
           .add(&S::pathBelief,
                Parameter::flag("path_belief")
                    .byDefault(1)
