@@ -53,8 +53,20 @@ Eigen::Matrix3d floorCovariance(const Eigen::Matrix3d& covariance,
   return 0.5 * (result + result.transpose());
 }
 
+// The samples' yaws on the unit circle, worked out once per fit: every M-step of every EM run
+// takes weighted sums of them.
+struct YawCircle {
+  std::vector<double> sines, cosines;
+  explicit YawCircle(const std::vector<PlanarPose>& samples) {
+    for (const PlanarPose& s : samples) {
+      sines.push_back(std::sin(s.z()));
+      cosines.push_back(std::cos(s.z()));
+    }
+  }
+};
+
 // Weighted mean (circular for yaw) and floored covariance of the samples.
-GaussianComponent weightedComponent(const std::vector<PlanarPose>& samples,
+GaussianComponent weightedComponent(const std::vector<PlanarPose>& samples, const YawCircle& yaw,
                                     const Eigen::VectorXd& weights,
                                     const Eigen::Vector3d& minStdDev) {
   const double total = weights.sum();
@@ -64,8 +76,8 @@ GaussianComponent weightedComponent(const std::vector<PlanarPose>& samples,
     const double w = weights[static_cast<Eigen::Index>(i)];
     sumX += w * samples[i].x();
     sumY += w * samples[i].y();
-    sumSin += w * std::sin(samples[i].z());
-    sumCos += w * std::cos(samples[i].z());
+    sumSin += w * yaw.sines[i];
+    sumCos += w * yaw.cosines[i];
   }
   component.mean = {sumX / total, sumY / total, wrapAngle(std::atan2(sumSin, sumCos))};
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
@@ -121,7 +133,7 @@ std::vector<PlanarPose> seeds(const std::vector<PlanarPose>& samples, int k,
 
 // One EM run with k components from a k-means++ seeding. Components whose responsibility
 // vanishes are dropped, so the result may have fewer than k components.
-GaussianMixture runEm(const std::vector<PlanarPose>& samples, int k,
+GaussianMixture runEm(const std::vector<PlanarPose>& samples, const YawCircle& yaw, int k,
                       const GaussianComponent& global, const Eigen::Vector3d& scale,
                       const GaussianMixture::FitOptions& options, std::mt19937_64& rng) {
   const std::size_t n = samples.size();
@@ -165,7 +177,7 @@ GaussianMixture runEm(const std::vector<PlanarPose>& samples, int k,
     for (std::size_t j = 0; j < m; ++j) {
       const Eigen::VectorXd column = responsibility.col(static_cast<Eigen::Index>(j));
       if (column.sum() < 1e-8) continue;  // an empty component: drop it
-      GaussianComponent c = weightedComponent(samples, column, options.minStdDev);
+      GaussianComponent c = weightedComponent(samples, yaw, column, options.minStdDev);
       c.weight /= static_cast<double>(n);
       components.push_back(c);
     }
@@ -188,7 +200,18 @@ void checkSamples(const std::vector<PlanarPose>& samples) {
 }  // namespace
 
 double wrapAngle(double angle) {
-  double wrapped = std::remainder(angle, 2.0 * kPi);  // [-pi, pi]
+  // Within a turn and a quarter either way (the differences of two wrapped yaws, which EM asks
+  // for per sample and component) one turn is added or taken away; the result is then the
+  // exact remainder, as std::remainder's is, so both give the same bits, and this is cheaper.
+  double wrapped;
+  if (angle >= -kPi && angle <= kPi)
+    wrapped = angle;
+  else if (angle > kPi && angle < 2.5 * kPi)
+    wrapped = angle - 2.0 * kPi;
+  else if (angle < -kPi && angle > -2.5 * kPi)
+    wrapped = angle + 2.0 * kPi;
+  else
+    wrapped = std::remainder(angle, 2.0 * kPi);  // [-pi, pi]
   if (wrapped <= -kPi) wrapped += 2.0 * kPi;
   return wrapped;
 }
@@ -243,9 +266,10 @@ GaussianMixture GaussianMixture::fit(const std::vector<PlanarPose>& samples,
   const int maxComponents =
       std::max(1, std::min(options.maxComponents, n / options.minSamplesPerComponent));
 
+  const YawCircle yaw(samples);
   // One component: closed form (EM converges in one step).
   const GaussianComponent global =
-      weightedComponent(samples, Eigen::VectorXd::Ones(n), options.minStdDev);
+      weightedComponent(samples, yaw, Eigen::VectorXd::Ones(n), options.minStdDev);
   GaussianMixture best({{1.0, global.mean, global.covariance}});
   double bestBic = best.bic(samples);
 
@@ -254,7 +278,7 @@ GaussianMixture GaussianMixture::fit(const std::vector<PlanarPose>& samples,
       global.covariance.diagonal().cwiseSqrt().cwiseMax(options.minStdDev);
   for (int k = 2; k <= maxComponents; ++k) {
     for (int run = 0; run < options.restarts; ++run) {
-      GaussianMixture candidate = runEm(samples, k, global, scale, options, rng);
+      GaussianMixture candidate = runEm(samples, yaw, k, global, scale, options, rng);
       const double candidateBic = candidate.bic(samples);
       if (candidateBic < bestBic) {  // strict: ties keep fewer components
         best = std::move(candidate);

@@ -140,6 +140,28 @@ TEST(GaussianMixtureTest, YawAroundPiIsOneComponentWithSmallSpread) {
   }
 }
 
+TEST(GaussianMixtureTest, WrapAngleIsTheExactRemainderToTheBit) {
+  // The cheap branches must give what std::remainder gives, or plans would change in their
+  // last bits: near the branch limits, at +-pi, and far out where the remainder is still used.
+  const auto byRemainder = [](double angle) {
+    double wrapped = std::remainder(angle, 2.0 * kPi);
+    if (wrapped <= -kPi) wrapped += 2.0 * kPi;
+    return wrapped;
+  };
+  std::vector<double> angles = {0.0,        kPi,       -kPi,       2.0 * kPi, -2.0 * kPi, 2.5 * kPi,
+                                -2.5 * kPi, 3.0 * kPi, -3.0 * kPi, 1e3,       -1e3};
+  for (double a : {kPi, 2.5 * kPi, 3.0 * kPi})
+    for (double sign : {1.0, -1.0}) {
+      angles.push_back(std::nextafter(sign * a, 0.0));
+      angles.push_back(std::nextafter(sign * a, sign * 10.0));
+    }
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> any(-4.0 * kPi, 4.0 * kPi);
+  for (int i = 0; i < 100000; ++i) angles.push_back(any(rng));
+  for (double a : angles) EXPECT_EQ(wrapAngle(a), byRemainder(a)) << a;
+  EXPECT_TRUE(std::isnan(wrapAngle(std::numeric_limits<double>::quiet_NaN())));
+}
+
 TEST(GaussianMixtureTest, IdenticalOrSingleSamplesGetTheFloorCovariance) {
   std::mt19937_64 rng(1);
   GaussianMixture::FitOptions options;
