@@ -367,12 +367,12 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
   // border, which a particle (or an execution with control noise) misses as often as it hits.
   // It ends at the step where most particles are inside too, and of equals (always, without
   // particles) where the nominal run is nearest the goal point.
-  // Only a step deep enough in the region may end a plan (goal_margin); a run that gets no
-  // deeper than that is an ordinary motion, which the goal bias grows on towards the goal point.
+  // Only a step deep enough in the region may end a plan (goal_margin); sampleCandidates made
+  // a run that gets no deeper an ordinary motion, so some step here is deep enough.
   const bool particles = withParticles();
   NominalRun& run = candidate.run;
-  const double deepEnough = settings_.goalMargin * goalTolerance();
-  unsigned bestStep = 0;
+  const double deepEnough = deepEnoughDistance();
+  unsigned bestStep = run.goalFrom;
   unsigned bestCount = 0;
   double bestDistance = std::numeric_limits<double>::infinity();
   for (unsigned step = run.goalFrom; step <= run.steps; ++step) {
@@ -380,15 +380,11 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
         particles ? candidate.verdict.inGoalAt(recordIndex(candidate, step)) : 0u;
     const double distance = context_.goal().distance(run.states[step - 1].data());
     if (distance > deepEnough) continue;
-    if (bestStep == 0 || count > bestCount || (count == bestCount && distance < bestDistance)) {
+    if (count > bestCount || (count == bestCount && distance < bestDistance)) {
       bestCount = count;
       bestDistance = distance;
       bestStep = step;
     }
-  }
-  if (bestStep == 0) {
-    run.reachedGoal = false;
-    return;
   }
   if (particles) candidate.verdict = candidate.verdict.cutAt(recordIndex(candidate, bestStep));
   run.states.resize(bestStep);
@@ -399,15 +395,17 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
 }
 
 bool PKpiece::getsDeepEnough(const NominalRun& run) const {
-  const double deepEnough = settings_.goalMargin * goalTolerance();
+  const double deepEnough = deepEnoughDistance();
   for (unsigned step = run.goalFrom; step > 0 && step <= run.steps; ++step)
     if (context_.goal().distance(run.states[step - 1].data()) <= deepEnough) return true;
   return false;
 }
 
-double PKpiece::goalTolerance() const {
+double PKpiece::deepEnoughDistance() const {
+  // The tolerance in what WorkspaceGoal::distance measures: metres, or normalized joint units
+  // for a configuration goal.
   const physics::GoalSpec& spec = context_.goal().spec();
-  return spec.joints.empty() ? spec.tolerance : spec.jointTolerance;
+  return settings_.goalMargin * (spec.joints.empty() ? spec.tolerance : spec.jointTolerance);
 }
 
 double PKpiece::solutionConfidence(const Candidate& c) const {

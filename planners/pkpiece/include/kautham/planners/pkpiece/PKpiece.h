@@ -93,14 +93,12 @@ class PKpiece : public ompl::base::Planner,
   static std::size_t recordIndex(const Candidate& candidate, unsigned step);
   /// Ends a goal-reaching candidate at the step where most of its particles are in the goal,
   /// of equals (always, without particles) where its nominal run is nearest the goal point,
-  /// among the steps within goal_margin of the goal point; with none, it does not reach the
-  /// goal.
+  /// among the steps within deepEnoughDistance() of the goal point (getsDeepEnough holds).
   void settleInGoal(Candidate& candidate) const;
-  /// Whether a run through the goal comes within goal_margin of the goal point at some step.
+  /// Whether a run through the goal comes within deepEnoughDistance() at some step.
   bool getsDeepEnough(const NominalRun& run) const;
-  /// The goal's tolerance in what WorkspaceGoal::distance measures (metres, or normalized joint
-  /// units for a configuration goal).
-  double goalTolerance() const;
+  /// How near the goal point a plan may end: goal_margin times the goal's tolerance.
+  double deepEnoughDistance() const;
   /// The belief cells and motion choice use: the path's or the motion's own (pathBelief).
   double selectionBelief(const Motion& motion) const;
   Grid::Coord cellOf(const std::vector<double>& state) const;
