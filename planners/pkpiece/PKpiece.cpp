@@ -23,6 +23,9 @@ namespace {
 constexpr double kGoodScoreFactor = 0.9;
 constexpr double kBadScoreFactor = 0.45;
 constexpr std::size_t kNearestKept = 30;  // motions nearest the goal kept for the goal bias
+// How much nearer the goal (in the goal bias's ranking, m) the tree's nearest motion must come
+// for the search to count as getting on (restartAfter).
+constexpr double kProgress = 0.01;
 }  // namespace
 
 struct PKpiece::Motion {
@@ -125,6 +128,8 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   // without it: the Jacobian aimed them.
   addPlannerProgressProperty("steered_by_jacobian INTEGER",
                              [this] { return std::to_string(steering_.jacobianAims()); });
+  // Times the tree was started afresh after restart_after expansions without progress.
+  addPlannerProgressProperty("restarts INTEGER", [this] { return std::to_string(restarts_); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -170,6 +175,9 @@ void PKpiece::clear() {
   verifications_ = 0;
   verificationRejections_ = 0;
   verificationRuns_ = 0;
+  closest_ = nullptr;
+  expansionsSinceProgress_ = 0;
+  restarts_ = 0;
 }
 
 std::uint64_t PKpiece::nextStreamSeed() {
@@ -209,6 +217,7 @@ void PKpiece::addMotion(Motion* motion) {
   motion->cell = &data;
 
   keepIfNear(nearest_, motion);
+  if (!closest_ || motion->goalDistance < closest_->goalDistance) closest_ = motion;
   // Only a motion whose path is believed at least as much as a solution must be can end
   // one: the goal bias expands from those.
   if (!settings_.pathBelief || motion->pathBelief >= settings_.goalConfidence)
@@ -645,20 +654,7 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
 
 ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCondition& ptc) {
   checkValidity();
-  if (motions_.empty()) {
-    auto root = std::make_unique<Motion>();
-    root->state = si_->allocState();
-    si_->copyState(root->state, pdef_->getStartState(0));
-    const double* start = physics::WorldStateSpace::values(root->state);
-    root->goalDistance = steering_.rankDistance(start);
-    root->poses = settings_.uncertainty
-                      ? ObjectPoseBelief::initial(context_.layout(), evaluator_.sampler(), start)
-                      : std::make_shared<const ObjectPoseBelief>();
-    Motion* raw = root.get();
-    motions_.push_back(std::move(root));
-    addMotion(raw);
-    grid_.updateAll();
-  }
+  if (motions_.empty()) plantRoot();
   while (!ptc) {
     Motion* from = selectMotion();
     CellData* cell = from->cell;
@@ -670,11 +666,49 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
       recordSolution(added, true, added->goalDistance);
       return ompl::base::PlannerStatus::EXACT_SOLUTION;
     }
+    if (stalled()) startAfresh();
   }
-  if (nearest_.empty() || nearest_.front()->parent == nullptr)
-    return ompl::base::PlannerStatus::TIMEOUT;
-  recordSolution(nearest_.front(), false, nearest_.front()->goalDistance);
+  if (!closest_ || closest_->parent == nullptr) return ompl::base::PlannerStatus::TIMEOUT;
+  recordSolution(closest_, false, closest_->goalDistance);
   return ompl::base::PlannerStatus::APPROXIMATE_SOLUTION;
+}
+
+void PKpiece::plantRoot() {
+  auto root = std::make_unique<Motion>();
+  root->state = si_->allocState();
+  si_->copyState(root->state, pdef_->getStartState(0));
+  const double* start = physics::WorldStateSpace::values(root->state);
+  root->goalDistance = steering_.rankDistance(start);
+  root->poses = settings_.uncertainty
+                    ? ObjectPoseBelief::initial(context_.layout(), evaluator_.sampler(), start)
+                    : std::make_shared<const ObjectPoseBelief>();
+  Motion* raw = root.get();
+  motions_.push_back(std::move(root));
+  addMotion(raw);
+  grid_.updateAll();
+  progressRank_ = raw->goalDistance;
+  expansionsSinceProgress_ = 0;
+}
+
+bool PKpiece::stalled() {
+  if (nearest_.front()->goalDistance <= progressRank_ - kProgress) {
+    progressRank_ = nearest_.front()->goalDistance;
+    expansionsSinceProgress_ = 0;
+    return false;
+  }
+  if (settings_.restartAfter == 0) return false;
+  return ++expansionsSinceProgress_ >= settings_.restartAfter;
+}
+
+void PKpiece::startAfresh() {
+  ++restarts_;
+  grid_.clear();
+  cells_.clear();
+  nearest_.clear();
+  goalStarts_.clear();
+  iteration_ = 1;  // cells' ages count from the new tree's first expansion, as the first tree's
+  beliefMeanSum_ = 0.0;
+  plantRoot();
 }
 
 void PKpiece::getPlannerData(ompl::base::PlannerData& data) const {

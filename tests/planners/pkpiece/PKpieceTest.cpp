@@ -96,6 +96,40 @@ TEST(PKpieceTest, WithAGoalMarginAPlanEndsOnlyDeepInTheGoalRegion) {
   EXPECT_LE(deep.replay.finalGoalDistance, 0.01);
 }
 
+TEST(PKpieceTest, AStalledSearchStartsAfreshAndSolves) {
+  // yumi_clutter_30 seed 6, without uncertainty: the first tree pushes can1 out but ends with
+  // the gripper low beside it, and every move from there tips a can or nudges can1 back; in 60 s
+  // it comes no nearer (session 21's bench). After 150 expansions without a centimetre of
+  // progress the search starts afresh, and the second tree solves.
+  const PlanRun run = plan("problems/yumi_clutter_30.xml", "p-KPIECE", 6,
+                           {{"uncertainty", "0"}, {"restart_after", "150"}});
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_GE(std::stol(run.property("restarts")), 1);
+}
+
+TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {
+  // Forced to start afresh after every expansion that makes no progress: the restarts come at the
+  // same expansions, and the plan is the same, with one thread or two.
+  std::vector<ParameterOverride> oneThread = {{"particles", "3"},
+                                              {"candidates", "3"},
+                                              {"verify_runs", "10"},
+                                              {"goal_confidence", "0.2"},
+                                              {"restart_after", "1"}};
+  std::vector<ParameterOverride> twoThreads = oneThread;
+  twoThreads.push_back({"threads", "2"});
+  const PlanRun first = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, oneThread);
+  const PlanRun second = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, twoThreads);
+  ASSERT_TRUE(first.outcome.solved);
+  EXPECT_GE(std::stol(first.property("restarts")), 1);
+  EXPECT_EQ(first.property("restarts"), second.property("restarts"));
+  ASSERT_EQ(first.outcome.controls.size(), second.outcome.controls.size());
+  for (std::size_t i = 0; i < first.outcome.controls.size(); ++i) {
+    EXPECT_EQ(first.outcome.controls[i].values, second.outcome.controls[i].values);
+    EXPECT_EQ(first.outcome.controls[i].steps, second.outcome.controls[i].steps);
+  }
+}
+
 TEST(PKpieceTest, ACappedLastMoveInStridesEndsOnTheGoalPointNotAStrideIntoTheRegion) {
   // yumi_clutter_5 seed 2: the last move, capped at 0.15 m/s, goes in strides of at most 10 cm.
   // A full stride first (session 18) entered the 2 cm region and ended 1.1 cm short of the goal

@@ -128,6 +128,14 @@ class PKpiece : public ompl::base::Planner,
   /// as many fresh executions give its estimated success. A plan that fails stays in the tree.
   bool passesVerification(Motion* end);
   std::uint64_t nextStreamSeed();
+  /// Adds a root motion at the start state to an empty tree.
+  void plantRoot();
+  /// Counts the expansion that just ended towards restartAfter; true when the tree is due to
+  /// start afresh.
+  bool stalled();
+  /// Forgets the tree for the search (its cells, the motions near the goal) and plants a new
+  /// root; the old motions stay, so the nearest of all can still be an approximate solution.
+  void startAfresh();
 
   physics::PlanningContext& context_;
   PKpieceSettings settings_;
@@ -160,7 +168,11 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t verifications_ = 0;           ///< plans executed in sampled worlds (verifyRuns)
   std::uint64_t verificationRejections_ = 0;  ///< of those, the ones that did not pass
   std::uint64_t verificationRuns_ = 0;        ///< sampled executions those and the estimates ran
-  bool steerNext_ = false;  ///< the motion being expanded was chosen by the goal bias
+  bool steerNext_ = false;                ///< the motion being expanded was chosen by the goal bias
+  Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
+  double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to
+  unsigned expansionsSinceProgress_ = 0;  ///< expansions since then (restartAfter)
+  std::uint64_t restarts_ = 0;            ///< times the tree started afresh
 };
 
 }  // namespace kautham::planners

@@ -81,6 +81,9 @@ struct PKpieceSettings {
   /// succeed, and as many fresh executions then give its estimated success. 0: the
   /// particles' estimate decides.
   unsigned verifyRuns;
+  /// The tree is started afresh from the start state after this many expansions in which the
+  /// motion nearest the goal (by the goal bias's ranking) came no centimetre nearer. 0: never.
+  unsigned restartAfter;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -259,6 +262,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("executions of a whole plan in sampled worlds before it may end the "
                              "search (as validate runs it); at least goal_confidence of them must "
                              "succeed (0: the particles' estimate decides)"))
+          .add(&S::restartAfter,
+               Parameter::integer("restart_after")
+                   .byDefault(0)
+                   .range(0, 100000000)
+                   .describe("start the tree afresh after this many expansions in which the "
+                             "motion nearest the goal came no centimetre nearer (0: never)"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")
