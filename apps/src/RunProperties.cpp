@@ -57,6 +57,8 @@ void addPlanProperties(const json& plan, RunProperties& properties) {
     properties["cells INTEGER"] = integer(static_cast<std::uint64_t>(*cells));
   if (const auto particles = plannerStatistic(plan, "particles"))
     properties["particles INTEGER"] = integer(static_cast<std::uint64_t>(*particles));
+  if (const auto restarts = plannerStatistic(plan, "restarts"))
+    properties["restarts INTEGER"] = integer(static_cast<std::uint64_t>(*restarts));
 
   if (plan.at("controls").empty()) return;  // no path, not even an approximate one
   const json& replay = result.at("replay");

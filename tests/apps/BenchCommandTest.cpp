@@ -219,6 +219,22 @@ TEST_F(BenchCommandTest, ResultFileHoldsTheRunAndItsProperties) {
       std::string::npos);
 }
 
+TEST_F(BenchCommandTest, PKpiecesRestartsAreARunProperty) {
+  // restart_after 1: every expansion that brings the tree no centimetre nearer starts it afresh.
+  ASSERT_EQ(kautham("bench problems/pusher_free.xml --planner p-KPIECE --runs 1 --time 5 "
+                    "--set uncertainty=0 --set restart_after=1 " +
+                    out())
+                .exitCode,
+            0);
+  const json result = readJson(folder / "out/runs/pusher_free/p-KPIECE/run-0.json");
+  const json plan = readJson(folder / "out" / result["plan"]["file"].get<std::string>());
+  std::string restarts;
+  for (const auto& [key, value] : plan["statistics"]["planner"].items())
+    if (key == "restarts") restarts = value.is_string() ? value.get<std::string>() : value.dump();
+  ASSERT_FALSE(restarts.empty()) << plan["statistics"].dump();
+  EXPECT_EQ(result["properties"]["restarts INTEGER"], restarts);
+}
+
 TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
   const CommandRun missing =
       kautham("bench problems/no_such_problem.xml --planner KPIECE " + out());
