@@ -159,7 +159,7 @@ void PKpiece::clear() {
   motions_.clear();
   grid_.clear();
   cells_.clear();
-  nearest_.clear();
+  treeBestRank_ = std::numeric_limits<double>::infinity();
   goalStarts_.clear();
   iteration_ = 1;
   beliefMeanSum_ = 0.0;
@@ -216,7 +216,7 @@ void PKpiece::addMotion(Motion* motion) {
   beliefMeanSum_ += data.meanBelief();
   motion->cell = &data;
 
-  keepIfNear(nearest_, motion);
+  treeBestRank_ = std::min(treeBestRank_, motion->goalDistance);
   if (!closest_ || motion->goalDistance < closest_->goalDistance) closest_ = motion;
   // Only a motion whose path is believed at least as much as a solution must be can end
   // one: the goal bias expands from those.
@@ -691,8 +691,8 @@ void PKpiece::plantRoot() {
 }
 
 bool PKpiece::stalled() {
-  if (nearest_.front()->goalDistance <= progressRank_ - kProgress) {
-    progressRank_ = nearest_.front()->goalDistance;
+  if (treeBestRank_ <= progressRank_ - kProgress) {
+    progressRank_ = treeBestRank_;
     expansionsSinceProgress_ = 0;
     return false;
   }
@@ -704,7 +704,7 @@ void PKpiece::startAfresh() {
   ++restarts_;
   grid_.clear();
   cells_.clear();
-  nearest_.clear();
+  treeBestRank_ = std::numeric_limits<double>::infinity();
   goalStarts_.clear();
   iteration_ = 1;  // cells' ages count from the new tree's first expansion, as the first tree's
   beliefMeanSum_ = 0.0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <random>
@@ -147,8 +148,10 @@ class PKpiece : public ompl::base::Planner,
   Grid grid_;  ///< over the end-effector projection (2 or 3 dimensions)
   std::vector<std::unique_ptr<Motion>> motions_;
   std::vector<std::unique_ptr<CellData>> cells_;
-  std::vector<Motion*> nearest_;  ///< the motions nearest the goal, nearest first
-  /// The same among the motions a solution may grow from (see addMotion).
+  /// The goal bias's rank of the current tree's motion nearest the goal (restartAfter).
+  double treeBestRank_ = std::numeric_limits<double>::infinity();
+  /// The motions nearest the goal among those a solution may grow from (see addMotion), nearest
+  /// first.
   std::vector<Motion*> goalStarts_;
   unsigned iteration_ = 1;
   double beliefMeanSum_ = 0.0;  ///< sum over cells of their mean motion belief
