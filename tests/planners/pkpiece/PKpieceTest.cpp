@@ -46,6 +46,15 @@ PlanRun plan(const std::string& file, const std::string& planner, std::uint32_t 
   return run;
 }
 
+/// The two plans hold the same controls, held for the same steps.
+void expectSameControls(const PlanRun& a, const PlanRun& b) {
+  ASSERT_EQ(a.outcome.controls.size(), b.outcome.controls.size());
+  for (std::size_t i = 0; i < a.outcome.controls.size(); ++i) {
+    EXPECT_EQ(a.outcome.controls[i].values, b.outcome.controls[i].values) << i;
+    EXPECT_EQ(a.outcome.controls[i].steps, b.outcome.controls[i].steps) << i;
+  }
+}
+
 TEST(PKpieceTest, WithoutUncertaintySolvesThePushingProblemAndTheReplayReachesTheGoal) {
   const PlanRun run = plan("problems/pusher_cans_5.xml", "p-KPIECE", 1, {{"uncertainty", "0"}});
   ASSERT_TRUE(run.outcome.solved);
@@ -123,11 +132,7 @@ TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {
   ASSERT_TRUE(first.outcome.solved);
   EXPECT_GE(std::stol(first.property("restarts")), 1);
   EXPECT_EQ(first.property("restarts"), second.property("restarts"));
-  ASSERT_EQ(first.outcome.controls.size(), second.outcome.controls.size());
-  for (std::size_t i = 0; i < first.outcome.controls.size(); ++i) {
-    EXPECT_EQ(first.outcome.controls[i].values, second.outcome.controls[i].values);
-    EXPECT_EQ(first.outcome.controls[i].steps, second.outcome.controls[i].steps);
-  }
+  expectSameControls(first, second);
 }
 
 TEST(PKpieceTest, ACappedLastMoveInStridesEndsOnTheGoalPointNotAStrideIntoTheRegion) {
@@ -167,11 +172,7 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
   const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, small);
   const PlanRun judgedInFull = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, full);
   ASSERT_TRUE(pruned.outcome.solved);
-  ASSERT_EQ(pruned.outcome.controls.size(), judgedInFull.outcome.controls.size());
-  for (std::size_t i = 0; i < pruned.outcome.controls.size(); ++i) {
-    EXPECT_EQ(pruned.outcome.controls[i].values, judgedInFull.outcome.controls[i].values) << i;
-    EXPECT_EQ(pruned.outcome.controls[i].steps, judgedInFull.outcome.controls[i].steps) << i;
-  }
+  expectSameControls(pruned, judgedInFull);
   EXPECT_EQ(pruned.outcome.beliefs, judgedInFull.outcome.beliefs);
   EXPECT_EQ(pruned.property("candidates"), judgedInFull.property("candidates"));
   EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
@@ -313,11 +314,7 @@ TEST(PKpieceTest, SameSeedGivesTheSamePlan) {
   const PlanRun first = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
   const PlanRun second = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
   ASSERT_TRUE(first.outcome.solved);
-  ASSERT_EQ(first.outcome.controls.size(), second.outcome.controls.size());
-  for (std::size_t i = 0; i < first.outcome.controls.size(); ++i) {
-    EXPECT_EQ(first.outcome.controls[i].values, second.outcome.controls[i].values);
-    EXPECT_EQ(first.outcome.controls[i].steps, second.outcome.controls[i].steps);
-  }
+  expectSameControls(first, second);
   EXPECT_EQ(first.outcome.beliefs, second.outcome.beliefs);
 }
 
