@@ -220,6 +220,7 @@ void MotionEvaluator::addOutcome(ParticleVerdict& verdict, const double* start,
   std::vector<char> recordedInteractionOk;
   for (const std::vector<double>& state : result.recorded)
     judge(state, true, recordedInteractionOk, recordedInGoal);
+  verdict.starts.emplace_back(start, start + stateSize_);
   verdict.ends.push_back(std::move(result.end));
   verdict.recorded.push_back(std::move(result.recorded));
   verdict.recordedInGoal.push_back(std::move(recordedInGoal));

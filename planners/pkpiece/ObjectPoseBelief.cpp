@@ -1,5 +1,8 @@
 #include "kautham/planners/pkpiece/ObjectPoseBelief.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace kautham::planners {
 
 namespace {
@@ -30,18 +33,29 @@ void ObjectPoseBelief::samplePoses(double* state, std::mt19937_64& rng) const {
 
 std::shared_ptr<const ObjectPoseBelief> ObjectPoseBelief::afterMotion(
     const std::vector<std::size_t>& objectBodies, const double* nominalStart,
-    const double* nominalEnd, const std::vector<std::vector<double>>& particleEnds,
-    std::mt19937_64& rng) const {
+    const double* nominalEnd, const std::vector<std::vector<double>>& particleStarts,
+    const std::vector<std::vector<double>>& particleEnds, std::mt19937_64& rng) const {
+  if (particleStarts.size() != particleEnds.size())
+    throw std::invalid_argument(
+        "ObjectPoseBelief::afterMotion: " + std::to_string(particleStarts.size()) +
+        " particle starts for " + std::to_string(particleEnds.size()) + " particle ends");
+  // Its particles start where their poses were drawn, up to centimetres from the nominal
+  // start: measured from there, every object would count as moved and be refitted from a
+  // handful of draws of its own distribution (a noisier copy, and most of the fitting time).
+  const auto movedBetween = [](const double* from, const double* to, std::size_t body) {
+    return (physics::WorldLayout::position(to, body) - physics::WorldLayout::position(from, body))
+               .head<2>()
+               .norm() > kMovedThreshold;
+  };
   auto next = std::make_shared<ObjectPoseBelief>(*this);
   for (std::size_t b : objectBodies) {
-    const Eigen::Vector3d before = physics::planarPose(nominalStart, b);
+    bool moved = movedBetween(nominalStart, nominalEnd, b);
+    for (std::size_t p = 0; p < particleEnds.size() && !moved; ++p)
+      moved = movedBetween(particleStarts[p].data(), particleEnds[p].data(), b);
+    if (!moved) continue;
     std::vector<PlanarPose> outcomes{physics::planarPose(nominalEnd, b)};
     for (const std::vector<double>& end : particleEnds)
       outcomes.push_back(physics::planarPose(end.data(), b));
-    bool moved = false;
-    for (const PlanarPose& p : outcomes)
-      moved = moved || (p.head<2>() - before.head<2>()).norm() > kMovedThreshold;
-    if (!moved) continue;
     if (next->perBody_.size() <= b) next->perBody_.resize(b + 1);  // a belief made certain
     if (outcomes.size() < 2) {
       // No particles (planning without uncertainty): the object is where the motion put it.
@@ -51,6 +65,10 @@ std::shared_ptr<const ObjectPoseBelief> ObjectPoseBelief::afterMotion(
     next->perBody_[b] = GaussianMixture::fit(outcomes, rng);
   }
   return next;
+}
+
+const GaussianMixture* ObjectPoseBelief::distribution(std::size_t body) const {
+  return body < perBody_.size() && perBody_[body] ? &*perBody_[body] : nullptr;
 }
 
 std::vector<std::size_t> ObjectPoseBelief::componentCounts() const {

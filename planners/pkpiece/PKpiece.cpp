@@ -464,8 +464,9 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
   steeredKept_ += chosen->steered ? 1 : 0;
   if (settings_.confirmBelief && withParticles()) confirm(*chosen, *from);
   const double* start = physics::WorldStateSpace::values(from->state);
-  const auto endPoses = from->poses->afterMotion(
-      evaluator_.objectBodies(), start, chosen->run.end.data(), chosen->verdict.ends, fitRng_);
+  const auto endPoses =
+      from->poses->afterMotion(evaluator_.objectBodies(), start, chosen->run.end.data(),
+                               chosen->verdict.starts, chosen->verdict.ends, fitRng_);
   // Pieces before the end carry the parent's pose distribution while no object has moved yet,
   // and once one has, the one fitted to where the particles had the objects at the piece's
   // end (the end's would put a can the gripper is still pushing where the push leaves it).
@@ -488,13 +489,20 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
 
 std::shared_ptr<const ObjectPoseBelief> PKpiece::posesAfter(const Candidate& chosen, unsigned step,
                                                             const Motion& from) {
-  std::vector<std::vector<double>> particles;
-  if (withParticles())
-    for (const std::vector<double>* state : particleStatesAt(chosen, step))
-      particles.push_back(*state);
+  // The particles that got this far: where each started, and its state after `step`.
+  std::vector<std::vector<double>> starts, states;
+  if (withParticles()) {
+    const std::size_t record = recordIndex(chosen, step);
+    const ParticleVerdict& verdict = chosen.verdict;
+    for (std::size_t p = 0; p < verdict.recorded.size(); ++p) {
+      if (verdict.recorded[p].size() <= record) continue;
+      starts.push_back(verdict.starts[p]);
+      states.push_back(verdict.recorded[p][record]);
+    }
+  }
   return from.poses->afterMotion(evaluator_.objectBodies(),
                                  physics::WorldStateSpace::values(from.state),
-                                 chosen.run.states[step - 1].data(), particles, fitRng_);
+                                 chosen.run.states[step - 1].data(), starts, states, fitRng_);
 }
 
 std::vector<unsigned> PKpiece::pieceEnds(const NominalRun& run) const {

@@ -383,10 +383,64 @@ TEST(ObjectPoseBeliefTest, StartsAsTheInitialUncertaintyAndRefitsOnlyMovedObject
     physics::setPlanarPose(p.data(), objects[0], pose);
     particles.push_back(p);
   }
-  const auto after = initial->afterMotion(objects, start.data(), end.data(), particles, rng);
+  const std::vector<std::vector<double>> starts(particles.size(), start);
+  const auto after =
+      initial->afterMotion(objects, start.data(), end.data(), starts, particles, rng);
   EXPECT_GE(after->componentCounts()[objects[0]], 2u);
   for (std::size_t i = 1; i < objects.size(); ++i)
     EXPECT_EQ(after->componentCounts()[objects[i]], 1u);
+  EXPECT_THROW(initial->afterMotion(objects, start.data(), end.data(), {}, particles, rng),
+               std::invalid_argument);
+}
+
+TEST(ObjectPoseBeliefTest, AnObjectNoParticleMovedKeepsItsDistributionWhereverItsPosesWereDrawn) {
+  // Particles start from poses drawn from the belief, centimetres from the nominal start.
+  // Only the first object is pushed (5 cm); the others end where their particle drew them.
+  // Measured from the nominal start they would all count as moved and be refitted to a
+  // dozen draws of their own distribution; measured from each particle's own start they
+  // keep their distribution, to the bit.
+  const core::Problem problem =
+      core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  const physics::WorldLayout& layout = context.layout();
+  const physics::UncertaintySampler sampler(problem, layout);
+  const std::vector<double> start = context.startState();
+  const auto initial = ObjectPoseBelief::initial(layout, sampler, start.data());
+  std::vector<std::size_t> objects;
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+    if (layout.bodies[b].role != physics::BodyRole::Robot) objects.push_back(b);
+  ASSERT_GE(objects.size(), 3u);
+  std::mt19937_64 rng(11);
+  std::vector<std::vector<double>> starts, ends;
+  for (int i = 0; i < 15; ++i) {
+    std::vector<double> s = start;
+    initial->samplePoses(s.data(), rng);
+    std::vector<double> e = s;
+    Eigen::Vector3d pushed = physics::planarPose(s.data(), objects[0]);
+    pushed.x() += 0.05;
+    physics::setPlanarPose(e.data(), objects[0], pushed);
+    starts.push_back(std::move(s));
+    ends.push_back(std::move(e));
+  }
+  std::vector<double> nominalEnd = start;
+  Eigen::Vector3d pushed = physics::planarPose(start.data(), objects[0]);
+  pushed.x() += 0.05;
+  physics::setPlanarPose(nominalEnd.data(), objects[0], pushed);
+
+  const auto after =
+      initial->afterMotion(objects, start.data(), nominalEnd.data(), starts, ends, rng);
+  const GaussianMixture* moved = after->distribution(objects[0]);
+  ASSERT_NE(moved, nullptr);
+  EXPECT_NEAR(moved->components().front().mean.x(), pushed.x(), 0.01);
+  for (std::size_t i = 1; i < objects.size(); ++i) {
+    const GaussianMixture* before = initial->distribution(objects[i]);
+    const GaussianMixture* kept = after->distribution(objects[i]);
+    ASSERT_NE(before, nullptr);
+    ASSERT_NE(kept, nullptr);
+    ASSERT_EQ(kept->components().size(), 1u);
+    EXPECT_EQ(kept->components()[0].mean, before->components()[0].mean) << objects[i];
+    EXPECT_EQ(kept->components()[0].covariance, before->components()[0].covariance);
+  }
 }
 
 TEST(MotionEvaluatorTest, ARunThroughTheGoalGoesOnWhileItStaysInside) {

@@ -26,13 +26,19 @@ class ObjectPoseBelief {
   /// Replaces the uncertain objects' poses in `state` by a draw from their distribution.
   void samplePoses(double* state, std::mt19937_64& rng) const;
 
-  /// The belief after a motion: objects that moved in the nominal motion or in a particle
-  /// (more than `moved` metres) get the mixture fitted to the outcomes (the nominal end state
-  /// and every particle's end state); the others keep their distribution from `this`.
+  /// The belief after a motion: objects that the motion moved (more than a millimetre), in
+  /// the nominal run or in a particle, get the mixture fitted to the outcomes (the nominal end
+  /// state and every particle's end state); the others keep their distribution from `this`.
+  /// A particle's move is measured from its own start (`particleStarts[p]`, where its poses
+  /// were sampled), not from the nominal start: an object no particle touched keeps its
+  /// distribution exactly. Throws std::invalid_argument if the two lists differ in length.
   std::shared_ptr<const ObjectPoseBelief> afterMotion(
       const std::vector<std::size_t>& objectBodies, const double* nominalStart,
-      const double* nominalEnd, const std::vector<std::vector<double>>& particleEnds,
-      std::mt19937_64& rng) const;
+      const double* nominalEnd, const std::vector<std::vector<double>>& particleStarts,
+      const std::vector<std::vector<double>>& particleEnds, std::mt19937_64& rng) const;
+
+  /// The distribution of a body's planar pose; nullptr if its pose is certain.
+  const GaussianMixture* distribution(std::size_t body) const;
 
   /// Components of the mixture of each object body (0: certain).
   std::vector<std::size_t> componentCounts() const;

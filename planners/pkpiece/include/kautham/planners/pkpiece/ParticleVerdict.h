@@ -16,9 +16,10 @@ struct ParticleVerdict {
   /// describe only the particles that ran).
   bool pruned = false;
 
-  std::vector<std::vector<double>> ends;  ///< each particle's final state
-  std::vector<char> endValid;             ///< each particle's states were all valid
-  std::vector<char> endInteractionOk;     ///< each particle's objects moved at most d
+  std::vector<std::vector<double>> starts;  ///< each particle's start state (its sampled poses)
+  std::vector<std::vector<double>> ends;    ///< each particle's final state
+  std::vector<char> endValid;               ///< each particle's states were all valid
+  std::vector<char> endInteractionOk;       ///< each particle's objects moved at most d
   std::vector<char> endInGoal;  ///< each particle ended valid, within d, in its goal region
   /// Per particle: its valid states after the request's recordAfter steps (ParticleResult),
   /// and for each whether it was inside the particle's goal and its objects had moved at most
