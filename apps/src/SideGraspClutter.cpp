@@ -386,7 +386,8 @@ std::string sideGraspProblemXml(const ClutterOptions& options,
       "      <Parameter name=\"goal_margin\">0.5</Parameter>\n"
       "      <!-- the tree starts afresh after 150 expansions without coming 1 cm nearer the\n"
       "           goal: pKP solved yumi_clutter_30 10 of 10 times, not 7 (docs/benchmarks.md,\n"
-      "           session 22); no run that solves at 5-20 objects stalls that long -->\n"
+      "           session 22); runs at 5-20 objects rarely stall that long (1 of 60 pKPU\n"
+      "           runs in session 23) -->\n"
       "      <Parameter name=\"restart_after\">150</Parameter>\n";
   xml += s.plannerParameters;
   xml +=
