@@ -169,8 +169,8 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
       {"particles", "6"}, {"candidates", "4"}, {"verify_runs", "0"}};
   std::vector<ParameterOverride> full = small;
   full.push_back({"prune_candidates", "0"});
-  const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, small);
-  const PlanRun judgedInFull = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 4, full);
+  const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
+  const PlanRun judgedInFull = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, full);
   ASSERT_TRUE(pruned.outcome.solved);
   expectSameControls(pruned, judgedInFull);
   EXPECT_EQ(pruned.outcome.beliefs, judgedInFull.outcome.beliefs);
