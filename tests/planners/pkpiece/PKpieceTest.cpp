@@ -347,17 +347,29 @@ TEST(PKpieceTest, KnowledgeRulesIgnoreAfterEffectsThatTheFullRulesReject) {
   EXPECT_EQ(knowledge.check(state.data()), physics::Violation::None);
 }
 
+/// The uncertain pusher scene's start, its initial belief (U_init) and its object bodies.
+struct UncertainCans {
+  core::Problem problem = core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
+  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
+  physics::UncertaintySampler sampler{problem, context.layout()};
+  std::vector<double> start = context.startState();
+  std::shared_ptr<const ObjectPoseBelief> initial =
+      ObjectPoseBelief::initial(context.layout(), sampler, start.data());
+  std::vector<std::size_t> objects = objectBodies(context.layout());
+
+  static std::vector<std::size_t> objectBodies(const physics::WorldLayout& layout) {
+    std::vector<std::size_t> objects;
+    for (std::size_t b = 0; b < layout.bodies.size(); ++b)
+      if (layout.bodies[b].role != physics::BodyRole::Robot) objects.push_back(b);
+    return objects;
+  }
+};
+
 TEST(ObjectPoseBeliefTest, StartsAsTheInitialUncertaintyAndRefitsOnlyMovedObjects) {
-  const core::Problem problem =
-      core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
-  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
-  const physics::WorldLayout& layout = context.layout();
-  const physics::UncertaintySampler sampler(problem, layout);
-  const std::vector<double> start = context.startState();
-  const auto initial = ObjectPoseBelief::initial(layout, sampler, start.data());
-  std::vector<std::size_t> objects;
-  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
-    if (layout.bodies[b].role != physics::BodyRole::Robot) objects.push_back(b);
+  const UncertainCans scene;
+  const std::vector<double>& start = scene.start;
+  const auto& initial = scene.initial;
+  const std::vector<std::size_t>& objects = scene.objects;
   for (std::size_t b : objects) EXPECT_EQ(initial->componentCounts()[b], 1u) << b;
 
   // Draws spread around the start pose with the problem's 1 cm.
@@ -399,16 +411,10 @@ TEST(ObjectPoseBeliefTest, AnObjectNoParticleMovedKeepsItsDistributionWhereverIt
   // Measured from the nominal start they would all count as moved and be refitted to a
   // dozen draws of their own distribution; measured from each particle's own start they
   // keep their distribution, to the bit.
-  const core::Problem problem =
-      core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
-  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
-  const physics::WorldLayout& layout = context.layout();
-  const physics::UncertaintySampler sampler(problem, layout);
-  const std::vector<double> start = context.startState();
-  const auto initial = ObjectPoseBelief::initial(layout, sampler, start.data());
-  std::vector<std::size_t> objects;
-  for (std::size_t b = 0; b < layout.bodies.size(); ++b)
-    if (layout.bodies[b].role != physics::BodyRole::Robot) objects.push_back(b);
+  const UncertainCans scene;
+  const std::vector<double>& start = scene.start;
+  const auto& initial = scene.initial;
+  const std::vector<std::size_t>& objects = scene.objects;
   ASSERT_GE(objects.size(), 3u);
   std::mt19937_64 rng(11);
   std::vector<std::vector<double>> starts, ends;
