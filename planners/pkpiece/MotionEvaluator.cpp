@@ -168,11 +168,14 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
   const std::vector<ParticleJob> jobs = particleJobs(request);
   physics::World& world = context_.world();
   const physics::ContactParameters mean = world.contactParameters();
-  const std::size_t batch = threads();  // more than kParticleBatch processes: keep all busy
+  // Batches only serve pruning: with nothing to beat every particle runs, so all go out at
+  // once and no process waits at a batch's end for another's last job (the same results).
+  const std::size_t batch =
+      toBeat < 0.0 ? jobs.size() : std::max<std::size_t>(kParticleBatch, threads());
   std::size_t ran = 0;
   try {
     while (ran < jobs.size()) {
-      const std::size_t end = std::min(jobs.size(), ran + std::max(kParticleBatch, batch));
+      const std::size_t end = std::min(jobs.size(), ran + batch);
       std::vector<ParticleResult> results =
           runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
       for (std::size_t p = ran; p < end; ++p) {

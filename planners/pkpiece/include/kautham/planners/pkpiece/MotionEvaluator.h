@@ -98,7 +98,8 @@ class MotionEvaluator {
   ///
   /// Particles run in batches of kParticleBatch (or threads(), if more). After each batch the
   /// best belief the remaining particles could still give is bounded; once it cannot exceed
-  /// `toBeat`, the run stops and the verdict is `pruned` (a negative `toBeat` never prunes).
+  /// `toBeat`, the run stops and the verdict is `pruned`. A negative `toBeat` never prunes,
+  /// and then all the particles run as one batch.
   /// A particle counts as in the goal only if it is valid and moved the objects at most d.
   ParticleVerdict runParticles(const ParticleRequest& request, double toBeat = -1.0);
   /// The particle jobs of a request: everything random drawn, in particle order.
