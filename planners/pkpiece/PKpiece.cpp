@@ -493,11 +493,9 @@ std::shared_ptr<const ObjectPoseBelief> PKpiece::posesAfter(const Candidate& cho
   std::vector<std::vector<double>> starts, states;
   if (withParticles()) {
     const std::size_t record = recordIndex(chosen, step);
-    const ParticleVerdict& verdict = chosen.verdict;
-    for (std::size_t p = 0; p < verdict.recorded.size(); ++p) {
-      if (verdict.recorded[p].size() <= record) continue;
-      starts.push_back(verdict.starts[p]);
-      states.push_back(verdict.recorded[p][record]);
+    for (std::size_t p : particlesAt(chosen, step)) {
+      starts.push_back(chosen.verdict.starts[p]);
+      states.push_back(chosen.verdict.recorded[p][record]);
     }
   }
   return from.poses->afterMotion(evaluator_.objectBodies(),
@@ -532,12 +530,20 @@ std::shared_ptr<const RobotSpread> PKpiece::robotSpreadAt(const Candidate& chose
   return RobotSpread::fromStates(robotPart_, states, std::move(carried));
 }
 
+std::vector<std::size_t> PKpiece::particlesAt(const Candidate& chosen, unsigned step) {
+  const std::size_t record = recordIndex(chosen, step);
+  std::vector<std::size_t> particles;
+  for (std::size_t p = 0; p < chosen.verdict.recorded.size(); ++p)
+    if (chosen.verdict.recorded[p].size() > record) particles.push_back(p);
+  return particles;
+}
+
 std::vector<const std::vector<double>*> PKpiece::particleStatesAt(const Candidate& chosen,
                                                                   unsigned step) {
   const std::size_t record = recordIndex(chosen, step);
   std::vector<const std::vector<double>*> states;
-  for (const auto& particle : chosen.verdict.recorded)
-    if (particle.size() > record) states.push_back(&particle[record]);
+  for (std::size_t p : particlesAt(chosen, step))
+    states.push_back(&chosen.verdict.recorded[p][record]);
   return states;
 }
 

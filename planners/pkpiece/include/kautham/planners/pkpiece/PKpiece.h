@@ -80,8 +80,9 @@ class PKpiece : public ompl::base::Planner,
   /// that far.
   std::shared_ptr<const RobotSpread> robotSpreadAt(const Candidate& chosen, unsigned step,
                                                    const Motion& from) const;
-  /// The states the chosen candidate's particles had after `step` steps, of those still
-  /// valid then (a recorded step of the candidate).
+  /// The chosen candidate's particles still valid after `step` steps (a recorded step of the
+  /// candidate), by index, and the states they had then.
+  static std::vector<std::size_t> particlesAt(const Candidate& chosen, unsigned step);
   static std::vector<const std::vector<double>*> particleStatesAt(const Candidate& chosen,
                                                                   unsigned step);
   /// An object body the spread must carry (objectSpread): the nominal run moved it from
