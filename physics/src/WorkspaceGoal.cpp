@@ -77,6 +77,11 @@ std::optional<std::size_t> WorkspaceGoal::freeSpaceBlocker(const double* state) 
   return freeSpace_->occupancy(state, nominalGoalPose_).largest;
 }
 
+double WorkspaceGoal::freeSpaceFilledAt(const double* state,
+                                        const Eigen::Isometry3d& goalLink) const {
+  return freeSpace_ ? freeSpace_->occupancy(state, goalLink).fraction : 0.0;
+}
+
 bool WorkspaceGoal::reached(const double* state) const {
   if (!spec_.joints.empty()) return jointError(state) <= spec_.jointTolerance;
   // The free space is looked at last: it is the only costly test.

@@ -44,23 +44,29 @@ Eigen::Vector3d rotationVector(const Eigen::Matrix3d& rotation) {
 }
 }  // namespace
 
+Eigen::Matrix3d GoalSteering::pitchedApproach(const physics::PlanningContext& context,
+                                              double pitch) {
+  const Eigen::Matrix3d& nominal = context.goal().nominalGoalPose().linear();
+  const physics::GoalSpec& spec = context.goal().spec();
+  if (!spec.approach || pitch == 0.0) return nominal;
+  const Eigen::Vector3d across = spec.approach->cross(Eigen::Vector3d::UnitZ());
+  if (across.norm() < 1e-9) return nominal;  // a vertical approach
+  return Eigen::AngleAxisd(-pitch, across.normalized()) * nominal;
+}
+
 GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator,
                            bool clearing, const PushSettings& push, bool kinematic,
                            const ApproachSettings& approach)
     : context_(context),
-      approachTurn_(context.goal().nominalGoalPose().linear()),
+      approachTurn_(pitchedApproach(context, approach.pitch)),
       evaluator_(evaluator),
-      clearing_(context, push),
+      end_(context, pitchedApproach(context, approach.pitch), approach.shift),
+      clearing_(context, push, &end_),
       clearingOn_(clearing),
       pushSpeed_(push.speed),
       finalApproach_(approach.lineUp),
       approachSpeed_(approach.speed) {
   if (kinematic) kinematic_.emplace(context);
-  const physics::GoalSpec& spec = context.goal().spec();
-  if (!spec.approach || approach.pitch == 0.0) return;
-  const Eigen::Vector3d across = spec.approach->cross(Eigen::Vector3d::UnitZ());
-  if (across.norm() < 1e-9) return;  // a vertical approach
-  approachTurn_ = Eigen::AngleAxisd(-approach.pitch, across.normalized()) * approachTurn_;
 }
 
 double GoalSteering::rankDistance(const double* state) const {
@@ -79,19 +85,21 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
     if (const std::optional<ClearingPush::Step> step = clearing_.next(start))
       return steer(start, step->waypoint, step->orientation,
                    step->pushing ? pushSpeed_ : kMoveSpeed);
-  if (context_.goal().freeSpaceBlocker(start)) return std::nullopt;
-  if (const std::optional<Aim> lineUp = lineUpAim(start))
+  const std::optional<GoalEnd::Pose> end = end_.clearPose(start);
+  if (!end) return std::nullopt;
+  if (const std::optional<Aim> lineUp = lineUpAim(start, *end))
     return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
   if (const std::optional<Aim> up = riseAim(start))
     return steer(start, up->position, up->orientation, kMoveSpeed);
-  return steer(start, context_.goal().position(), approachTurn_, approachSpeed_, Strides::Even);
+  return steer(start, end->point, end->turn, approachSpeed_, Strides::Even);
 }
 
-std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) const {
+std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state,
+                                                         const GoalEnd::Pose& end) const {
   const physics::GoalSpec& spec = context_.goal().spec();
   if (finalApproach_ <= 0.0 || !spec.approach) return std::nullopt;
-  const Eigen::Vector3d approach = spec.approach->normalized();
-  const Eigen::Vector3d goal = context_.goal().position();
+  const Eigen::Vector3d& approach = end.approach;
+  const Eigen::Vector3d& goal = end.point;
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const Eigen::Vector3d fromGoal = link - goal;
   const double along = fromGoal.dot(approach);  // negative behind the goal point
@@ -101,7 +109,7 @@ std::optional<GoalSteering::Aim> GoalSteering::lineUpAim(const double* state) co
   if (offLine <= kOnApproachLine && along <= kOnApproachLine &&
       along >= -finalApproach_ - kOnApproachLine)
     return std::nullopt;
-  const Eigen::Matrix3d& turn = approachTurn_;
+  const Eigen::Matrix3d& turn = end.turn;
   const Eigen::Vector3d lineUp = goal - finalApproach_ * approach;
   // A side approach among the cans, from a push that ended low: up first, still turned as the
   // push left it, to the travel height above the cans; turned on the way, the fingers swung into

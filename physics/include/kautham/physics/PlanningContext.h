@@ -38,6 +38,8 @@ class PlanningContext {
   const core::Query& query() const { return problem_.queries.at(queryIndex_); }
   World& world() { return *world_; }
   const WorldLayout& layout() const { return *layout_; }
+  /// The layout, for what keeps it (GoalFreeSpace).
+  const std::shared_ptr<const WorldLayout>& sharedLayout() const { return layout_; }
 
   const ompl::control::SpaceInformationPtr& spaceInformation() const { return si_; }
   const ompl::base::ProblemDefinitionPtr& problemDefinition() const { return pdef_; }

@@ -50,6 +50,9 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
   /// The movable object that fills most of the free space at the goal pose (none when the
   /// goal has no free space or it is clear).
   std::optional<std::size_t> freeSpaceBlocker(const double* state) const;
+  /// The share of the free space that movable objects fill with the goal link at `goalLink`
+  /// (0: clear, and 0 without a free space).
+  double freeSpaceFilledAt(const double* state, const Eigen::Isometry3d& goalLink) const;
   /// The goal link at the goal point, turned as the approach and level axis ask.
   const Eigen::Isometry3d& nominalGoalPose() const { return nominalGoalPose_; }
   bool reached(const double* state) const;

@@ -5,6 +5,7 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/pkpiece/ClearingPush.h"
+#include "kautham/planners/pkpiece/GoalEnd.h"
 #include "kautham/planners/pkpiece/JointSpaceSteering.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
 
@@ -17,6 +18,9 @@ struct ApproachSettings {
   double pitch = 0.0;   ///< rad the approach points the gripper down
   /// m/s the last move goes at most (0: as fast as the joints allow, which the arm lags).
   double speed = 0.0;
+  /// m from the goal point the gripper may end instead, where an object reaches into the free
+  /// space at the goal point (GoalEnd; 0: the goal point only).
+  double shift = 0.0;
 };
 
 /// A control that drives the goal link to the goal region's centre, for p-KPIECE's
@@ -55,6 +59,9 @@ class GoalSteering {
   /// last move's speed.
   GoalSteering(const physics::PlanningContext& context, MotionEvaluator& evaluator, bool clearing,
                const PushSettings& push, bool kinematic, const ApproachSettings& approach = {});
+  // Its clearing push keeps a pointer to its GoalEnd: not copied, not moved.
+  GoalSteering(const GoalSteering&) = delete;
+  GoalSteering& operator=(const GoalSteering&) = delete;
 
   /// The steering motion from `start`; none when no aim is found (a probe step is invalid), the
   /// goal is a configuration, or the goal's free space is blocked and there is no clearing push.
@@ -69,6 +76,9 @@ class GoalSteering {
   void resetCount() { jacobianAims_ = 0; }
 
  private:
+  /// The goal's nominal orientation pitched down by `pitch` about the horizontal across the
+  /// approach (unchanged without a side approach).
+  static Eigen::Matrix3d pitchedApproach(const physics::PlanningContext& context, double pitch);
   /// Where the goal link heads next, and turned how.
   struct Aim {
     Eigen::Vector3d position;
@@ -78,9 +88,9 @@ class GoalSteering {
   /// yet: the line-up point on the approach line, the line-up distance behind the goal point,
   /// turned as the goal asks. For a side approach near the cans: up to
   /// ClearingPush::travelHeight() first (as it is turned), over the line-up point, and down
-  /// onto it; from high above them, none (straight at the goal point). None without an
-  /// approach.
-  std::optional<Aim> lineUpAim(const double* state) const;
+  /// onto it; from high above them, none (straight at `end`, where the gripper ends). None
+  /// without an approach.
+  std::optional<Aim> lineUpAim(const double* state, const GoalEnd::Pose& end) const;
   /// Without a line-up, for a side approach with the clearing push: from below the travel
   /// height with the gripper pointing much further down than the approach (after a steep
   /// push), straight up to that height, turned as it is; there, turned in place to the
@@ -115,6 +125,7 @@ class GoalSteering {
   /// the approach's pitch about the horizontal across the approach.
   Eigen::Matrix3d approachTurn_;
   MotionEvaluator& evaluator_;
+  GoalEnd end_;  ///< where the gripper ends (before clearing_, which asks it)
   ClearingPush clearing_;
   bool clearingOn_;
   double pushSpeed_;      ///< m/s

@@ -1,0 +1,92 @@
+#include "kautham/planners/pkpiece/GoalEnd.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace kautham::planners {
+
+namespace {
+// The grid of points tried beside the goal point.
+constexpr double kSpacing = 0.0025;  // m
+// The turns about the vertical tried at each point, nearest first.
+constexpr std::array<double, 7> kYaws{0.0, 0.05, -0.05, 0.1, -0.1, 0.15, -0.15};  // rad
+// A turned end keeps this much of the approach tolerance: the arm ends near it, not on it.
+constexpr double kToleranceKept = 0.05;  // rad
+// A free space filled more than this at the goal point is not cleared by ending a centimetre
+// away, turned a little: it is not tried beside the goal point (the search asks this at every
+// state while a can fills the free space).
+constexpr double kMostFilled = 0.2;
+// The room a pose beside the goal point leaves around its free space: the arm ends within a few
+// millimetres of where it is steered, and an end on the edge of a clear pose would not do.
+constexpr double kRoom = 0.002;  // m
+
+double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+}  // namespace
+
+GoalEnd::GoalEnd(const physics::PlanningContext& context, const Eigen::Matrix3d& turn, double shift)
+    : context_(context) {
+  const physics::GoalSpec& spec = context.goal().spec();
+  const Eigen::Vector3d approach =
+      spec.approach ? spec.approach->normalized() : Eigen::Vector3d(turn.col(2));
+  poses_.push_back({spec.position, turn, approach});
+  if (shift <= 0.0) return;
+  struct Tried {
+    double distance;
+    double yaw;
+    Pose pose;
+  };
+  std::vector<Tried> tried;
+  const int reach = static_cast<int>(std::floor(shift / kSpacing + 1e-9));
+  for (int i = -reach; i <= reach; ++i)
+    for (int j = -reach; j <= reach; ++j) {
+      const Eigen::Vector3d offset(i * kSpacing, j * kSpacing, 0.0);
+      if (offset.norm() > shift + 1e-9) continue;
+      for (const double yaw : kYaws) {
+        if (i == 0 && j == 0 && yaw == 0.0) continue;
+        const Eigen::Matrix3d turned = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * turn;
+        if (spec.approach &&
+            angleBetween(turned.col(2), approach) > spec.approachTolerance - kToleranceKept)
+          continue;
+        tried.push_back({offset.norm(),
+                         std::abs(yaw),
+                         {spec.position + offset, turned,
+                          Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * approach}});
+      }
+    }
+  std::stable_sort(tried.begin(), tried.end(), [](const Tried& a, const Tried& b) {
+    return a.distance != b.distance ? a.distance < b.distance : a.yaw < b.yaw;
+  });
+  for (const Tried& t : tried) poses_.push_back(t.pose);
+  if (spec.freeSpace)
+    roomy_.emplace(context.sharedLayout(),
+                   spec.freeSpace->size + Eigen::Vector3d::Constant(2.0 * kRoom),
+                   spec.freeSpace->center);
+}
+
+std::optional<GoalEnd::Pose> GoalEnd::clearPose(const double* state) const {
+  const physics::WorkspaceGoal& goal = context_.goal();
+  if (!shifts()) {
+    // As before there were shifts: the free space judged at the goal's nominal pose.
+    if (goal.freeSpaceBlocker(state)) return std::nullopt;
+    return poses_.front();
+  }
+  const auto linkAt = [](const Pose& pose) {
+    Eigen::Isometry3d link = Eigen::Isometry3d::Identity();
+    link.linear() = pose.turn;
+    link.translation() = pose.point;
+    return link;
+  };
+  const double filled = goal.freeSpaceFilledAt(state, linkAt(poses_.front()));
+  if (filled == 0.0) return poses_.front();
+  if (filled > kMostFilled || !roomy_) return std::nullopt;
+  for (std::size_t i = 1; i < poses_.size(); ++i)
+    if (roomy_->isFree(state, linkAt(poses_[i]))) return poses_[i];
+  return std::nullopt;
+}
+
+}  // namespace kautham::planners

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "kautham/physics/GoalFreeSpace.h"
+#include "kautham/physics/PlanningContext.h"
+
+namespace kautham::planners {
+
+/// Where in the goal region p-KPIECE's goal steering makes the gripper end (ours, not in the
+/// paper).
+///
+/// At the goal point, turned as the steering's approach asks (`turn`), while the goal's free
+/// space is clear there. With `shift` > 0, where an object reaches a little way into the free
+/// space at the goal point, the nearest pose (within `shift` of the goal point, horizontally,
+/// on a 2.5 mm grid; then turned by up to 0.15 rad about the vertical, within the goal's
+/// approach tolerance) whose free space is clear with 3 mm to spare on every side (the arm ends
+/// within a few millimetres of where it is steered). The goal region allows it: the gripper
+/// may end anywhere within the tolerance, turned within the approach tolerance, and the free
+/// space moves with it. On kuka_clutter_30 a can behind the target reaches 6 mm into the free
+/// space's far end, where no push can get at it without touching the target; 7.5 mm short of
+/// the goal point, the free space is clear.
+class GoalEnd {
+ public:
+  struct Pose {
+    Eigen::Vector3d point;     ///< where the goal link ends
+    Eigen::Matrix3d turn;      ///< how it is turned there
+    Eigen::Vector3d approach;  ///< the goal's approach direction, turned with it
+  };
+
+  GoalEnd(const physics::PlanningContext& context, const Eigen::Matrix3d& turn, double shift);
+
+  /// The pose to end at in `state`; none while every pose tried has an object in its free
+  /// space.
+  std::optional<Pose> clearPose(const double* state) const;
+  /// Whether poses beside the goal point are tried (`shift` > 0).
+  bool shifts() const { return poses_.size() > 1; }
+
+ private:
+  const physics::PlanningContext& context_;
+  /// The goal point turned as asked first, then the others, nearest first.
+  std::vector<Pose> poses_;
+  /// The goal's free space grown by the room a pose beside the goal point must leave (none
+  /// without shifts or a free space).
+  std::optional<physics::GoalFreeSpace> roomy_;
+};
+
+}  // namespace kautham::planners

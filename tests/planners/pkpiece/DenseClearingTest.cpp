@@ -1,0 +1,154 @@
+// How p-KPIECE's clearing copes with kuka_clutter_30, where neither stand-off beside the free
+// space's blocker (can1) leaves the gripper room and a second can (can20) reaches 6 mm into the
+// free space from behind the target, where no push can get at it: the real scene, the real
+// physics, the steering followed motion after motion.
+
+#include <algorithm>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "TestPaths.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/planners/pkpiece/ClearingPush.h"
+#include "kautham/planners/pkpiece/GoalSteering.h"
+#include "kautham/planners/pkpiece/MotionEvaluator.h"
+
+namespace kautham::planners {
+namespace {
+
+// The push as kuka_clutter_30's file sets it: pitched 0.45 rad, the corridor 20 cm behind the
+// goal point cleared first pitched 1.2 rad.
+PushSettings filePush(bool straddle) {
+  PushSettings push{0.45, 0.2, 1.2};
+  push.straddle = straddle;
+  return push;
+}
+// Its approach: lined up 5 cm behind the goal point, pitched 0.2 rad; ending up to `shift` from
+// the goal point.
+ApproachSettings fileApproach(double shift) { return ApproachSettings{0.05, 0.2, 0.0, shift}; }
+
+struct Clutter30 {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_30.xml"));
+  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
+
+  std::size_t body(const std::string& name) const {
+    const auto& bodies = context.layout().bodies;
+    const auto found = std::find_if(bodies.begin(), bodies.end(),
+                                    [&](const physics::BodyInfo& b) { return b.name == name; });
+    EXPECT_NE(found, bodies.end()) << name;
+    return static_cast<std::size_t>(found - bodies.begin());
+  }
+  /// The start with the named cans carried (upright, at rest) to (x, y).
+  void carry(std::vector<double>& state, const std::string& name, double x, double y) const {
+    double* position = state.data() + body(name) * physics::WorldLayout::kBodyStateSize +
+                       physics::WorldLayout::kPosition;
+    position[0] = x;
+    position[1] = y;
+  }
+  /// The start as p-KPIECE's search leaves it once the corridor is clear (pKP, seed 1): can3
+  /// and can6, in the wrist's way at the pre-grasp, pushed aside to -x.
+  std::vector<double> corridorCleared() const {
+    std::vector<double> state = context.startState();
+    carry(state, "can3", -0.10, 0.02);
+    carry(state, "can6", -0.15, 0.06);
+    return state;
+  }
+};
+
+/// Follows the steering from `state` while `going` holds (at most `most` motions): whether a
+/// motion broke a rule, and where the last valid one ended.
+struct Steered {
+  bool brokeARule = false;
+  int motions = 0;
+  std::vector<double> end;
+};
+
+template <typename Going>
+Steered follow(physics::PlanningContext& context, const PushSettings& push,
+               const ApproachSettings& approach, std::vector<double> state, int most, Going going) {
+  MotionEvaluator evaluator(context, 0.0);
+  const GoalSteering steering(context, evaluator, true, push, true, approach);
+  Steered result;
+  result.end = std::move(state);
+  for (; result.motions < most && going(result.end); ++result.motions) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(result.end.data());
+    if (!steered) break;
+    const NominalRun run =
+        evaluator.runNominal(result.end.data(), steered->control.data(), steered->steps, true);
+    // A run stops early at a broken rule, or where it enters the goal region.
+    if (run.steps < steered->steps && !run.reachedGoal) {
+      result.brokeARule = true;
+      return result;
+    }
+    result.end = run.end;
+  }
+  return result;
+}
+
+TEST(DenseClearingTest, ABlockerWithNoRoomBesideItIsPushedFromBetweenTheFingers) {
+  // can1 fills the free space; can15 stands 9.5 cm to its -x side and can21 beyond its +x
+  // stand-off, so the gripper has room at neither. Straddled (the fingers, 9 cm apart, lowered
+  // around it from above), it is pushed to +x, where it has room to land, and leaves the free
+  // space, every motion valid.
+  Clutter30 scene;
+  const std::size_t can1 = scene.body("can1");
+  const std::vector<double> start = scene.corridorCleared();
+  const ClearingPush clearing(scene.context, filePush(true));
+  const std::optional<ClearingPush::Step> first = clearing.next(start.data());
+  ASSERT_TRUE(first.has_value());
+  const Eigen::Vector3d can = physics::WorldLayout::position(start.data(), can1);
+  // Above the can itself, not beside it as without straddling (11 cm to its side).
+  EXPECT_LT(std::hypot(first->waypoint.x() - can.x(), first->waypoint.y() - can.y()), 0.03);
+  const ClearingPush beside(scene.context, filePush(false));
+  EXPECT_GT(std::abs(beside.next(start.data())->waypoint.x() - can.x()), 0.09);
+
+  const Steered straddled =
+      follow(scene.context, filePush(true), fileApproach(0.0), start, 16,
+             [&](const std::vector<double>& state) {
+               return scene.context.goal().freeSpaceBlocker(state.data()) == can1;
+             });
+  EXPECT_FALSE(straddled.brokeARule) << "after " << straddled.motions << " motions";
+  EXPECT_NE(scene.context.goal().freeSpaceBlocker(straddled.end.data()), can1);
+  EXPECT_GT(physics::WorldLayout::position(straddled.end.data(), can1).x(), can.x() + 0.05);
+}
+
+TEST(DenseClearingTest, AnObjectAtTheFreeSpacesFarEndIsLeftByEndingBesideTheGoalPoint) {
+  // With can1 pushed out (to +x), can20 is left reaching 6 mm into the free space's far end,
+  // behind the target. The push the clearing then asks for reaches round the target and touches
+  // it. Ending within 7.5 mm of the goal point (kuka_clutter_30's margin is 1 cm), a pose whose
+  // free space is clear is found, no push is asked for, and the steering reaches the goal there,
+  // every motion valid.
+  Clutter30 scene;
+  std::vector<double> state = scene.corridorCleared();
+  scene.carry(state, "can1", 0.16, 0.14);
+  const physics::WorkspaceGoal& goal = scene.context.goal();
+  ASSERT_EQ(goal.freeSpaceBlocker(state.data()), scene.body("can20"));
+  const auto notThere = [&](const std::vector<double>& s) {
+    return !goal.reached(s.data()) || goal.distance(s.data()) > 0.01;
+  };
+
+  const Eigen::Matrix3d turn = goal.nominalGoalPose().linear();
+  EXPECT_FALSE(GoalEnd(scene.context, turn, 0.0).clearPose(state.data()).has_value());
+  const Steered pushed =
+      follow(scene.context, filePush(false), fileApproach(0.0), state, 24, notThere);
+  EXPECT_TRUE(pushed.brokeARule) << "after " << pushed.motions << " motions";
+
+  const GoalEnd shifted(scene.context, turn, 0.0075);
+  const std::optional<GoalEnd::Pose> end = shifted.clearPose(state.data());
+  ASSERT_TRUE(end.has_value());
+  // Turned about the vertical, or beside the goal point, or both.
+  EXPECT_TRUE((end->point - goal.position()).norm() > 0.0 || !end->turn.isApprox(turn));
+  EXPECT_LE((end->point - goal.position()).norm(), 0.0075 + 1e-9);
+  EXPECT_FALSE(ClearingPush(scene.context, filePush(false), &shifted).next(state.data()));
+
+  const Steered steered =
+      follow(scene.context, filePush(false), fileApproach(0.0075), state, 24, notThere);
+  EXPECT_FALSE(steered.brokeARule) << "after " << steered.motions << " motions";
+  EXPECT_TRUE(goal.reached(steered.end.data()))
+      << "goal distance " << goal.distance(steered.end.data());
+  EXPECT_LE(goal.distance(steered.end.data()), 0.01);
+}
+
+}  // namespace
+}  // namespace kautham::planners
