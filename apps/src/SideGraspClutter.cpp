@@ -116,7 +116,18 @@ const std::vector<SideSetup>& sideSetups() {
        "           rides higher over the cans behind the pre-grasp; kuka_clutter_20 then\n"
        "           tipped a can in 8.1 % of executions, not 12.6 % (docs/benchmarks.md,\n"
        "           session 16) -->\n"
-       "      <Parameter name=\"approach_pitch\">0.2</Parameter>\n"},
+       "      <Parameter name=\"approach_pitch\">0.2</Parameter>\n"
+       "      <!-- the tree starts afresh only after 500 expansions without coming 1 cm nearer\n"
+       "           the goal: at 150 kuka_clutter_30's trees were thrown away while they cleared\n"
+       "           the corridor; pKP (with goal_shift) solved 4 of 10 at 500, 1 of 10 at 150\n"
+       "           (docs/benchmarks.md, session 24) -->\n"
+       "      <Parameter name=\"restart_after\">500</Parameter>\n"
+       "      <!-- where a can reaches a little into the free space at the goal point, the\n"
+       "           gripper may end up to 7.5 mm from it (within the 1 cm margin), turned up to\n"
+       "           0.15 rad, where the free space is clear: kuka_clutter_30's can20, behind the\n"
+       "           target, cannot be pushed without touching it (docs/planners.md, session 24) "
+       "-->\n"
+       "      <Parameter name=\"goal_shift\">0.0075</Parameter>\n"},
       {"yumi",
        "An ABB YuMi stands on the table and must bring its left gripper, open, to a side\n"
        "     pre-grasp of a slim glass at the back of the clutter: gripper level, fingers open\n"
@@ -174,6 +185,11 @@ const std::vector<SideSetup>& sideSetups() {
        "           forearm rides higher over the cans behind the pre-grasp; yumi_clutter_10\n"
        "           solved 10 of 10, not 8 (docs/benchmarks.md, session 16) -->\n"
        "      <Parameter name=\"approach_pitch\">0.2</Parameter>\n"
+       "      <!-- the tree starts afresh after 150 expansions without coming 1 cm nearer the\n"
+       "           goal: pKP solved yumi_clutter_30 10 of 10 times, not 7 (docs/benchmarks.md,\n"
+       "           session 22); runs at 5-20 objects rarely stall that long (1 of 60 pKPU\n"
+       "           runs in session 23) -->\n"
+       "      <Parameter name=\"restart_after\">150</Parameter>\n"
        "      <!-- the last move to the pre-grasp at most 0.15 m/s: at full speed the arm lags\n"
        "           and ends 1 cm short; yumi_clutter_10's and _20's execution medians were\n"
        "           84.5 and 80.5 % at full speed, 88.5 and 85.5 % at 0.3 m/s, 90.5 and 89.5 %\n"
@@ -383,12 +399,7 @@ std::string sideGraspProblemXml(const ClutterOptions& options,
       "           near the region's edge, an execution misses it as often as it hits; pKP's\n"
       "           plans on yumi_clutter_30 succeeded in 22.7 % of executions on average, not\n"
       "           14.2 % (docs/benchmarks.md, session 21) -->\n"
-      "      <Parameter name=\"goal_margin\">0.5</Parameter>\n"
-      "      <!-- the tree starts afresh after 150 expansions without coming 1 cm nearer the\n"
-      "           goal: pKP solved yumi_clutter_30 10 of 10 times, not 7 (docs/benchmarks.md,\n"
-      "           session 22); runs at 5-20 objects rarely stall that long (1 of 60 pKPU\n"
-      "           runs in session 23) -->\n"
-      "      <Parameter name=\"restart_after\">150</Parameter>\n";
+      "      <Parameter name=\"goal_margin\">0.5</Parameter>\n";
   xml += s.plannerParameters;
   xml +=
       "    </Parameters>\n"

@@ -41,24 +41,11 @@ constexpr double kFloorMargin = 0.012;  // m
 // any single push's own length, so a state with one push done ranks before any state still
 // on the one before.
 constexpr double kLaterPush = 0.5;  // m
-// A finger's thickness across the approach (the KUKA's are 1.5 cm): the free space is as wide
-// as the open fingers' gap and the two fingers.
-constexpr double kFingerThickness = 0.015;  // m
-// Straddled, an object must leave at least this much of the fingers' gap free on each side.
-constexpr double kStraddleSlack = 0.005;  // m
-// Straddled, the goal link stands this far past the object's centre along the approach: the
-// fingers reach along its side, and the palm (6 cm back from the KUKA's fingertips, higher as
-// the gripper points down) stays clear of it.
-constexpr double kStraddleAhead = 0.01;  // m
 }  // namespace
 
 ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSettings& settings,
                            const GoalEnd* end)
-    : context_(context),
-      behind_(settings.behind),
-      belowCentre_(settings.belowCentre),
-      straddle_(settings.straddle),
-      end_(end) {
+    : context_(context), behind_(settings.behind), belowCentre_(settings.belowCentre), end_(end) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
@@ -189,11 +176,6 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const physics::WorkspaceGoal& goal = context_.goal();
   const Posture& posture = choosePosture(state, blocker, own);
   const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
-  // The free space's blocker is straddled held as its own push: the corridor's steep posture
-  // would bring the palm down onto the object's top.
-  if (context_.goal().freeSpaceBlocker(state) == blocker &&
-      straddles(state, blocker, centre, posture))
-    return straddleStep(state, blocker, later, push_);
   const Eigen::Vector3d object = aimAt(centre, posture);
   const Eigen::Vector3d plus = standOff(centre, posture, 1.0);
   const Eigen::Vector3d minus = standOff(centre, posture, -1.0);
@@ -224,62 +206,6 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
     held = &nearer(pitch, nearer(pitch, push_, corridor_), crowded_);
   }
   return Step{transfer.waypoint, held->orientation,
-              transfer.length + (end - start).norm() + endToGoal, false};
-}
-
-double ClearingPush::halfAcross(std::size_t body) const {
-  for (const Footprint& f : footprints_)
-    if (f.body == body) return 0.5 * f.bounds.sizes().head<3>().dot(across_.cwiseAbs());
-  return 0.0;
-}
-
-bool ClearingPush::straddles(const double* state, std::size_t blocker,
-                             const Eigen::Vector3d& centre, const Posture& posture) const {
-  if (!straddle_) return false;
-  const double gapHalf = halfWidth_ - kFingerThickness;
-  const double object = halfAcross(blocker);
-  if (object <= 0.0 || object + kStraddleSlack > gapHalf) return false;
-  return widerRoom(state, centre, blocker, posture) < kCrowdedRoom;
-}
-
-double ClearingPush::landingRoom(const double* state, const Eigen::Vector3d& centre,
-                                 std::size_t blocker, double side) const {
-  const Eigen::Vector2d from = centre.head<2>();
-  const Eigen::Vector2d to =
-      from + side * (halfWidth_ + halfAcross(blocker) + kStandOff) * across_.head<2>();
-  double nearest = std::numeric_limits<double>::infinity();
-  const auto& bodies = context_.layout().bodies;
-  for (std::size_t b = 0; b < bodies.size(); ++b) {
-    if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;
-    const Eigen::Vector2d object = physics::WorldLayout::position(state, b).head<2>();
-    nearest = std::min(nearest, core::distanceToSegment<Eigen::Vector2d>(object, from, to));
-  }
-  return nearest;
-}
-
-ClearingPush::Step ClearingPush::straddleStep(const double* state, std::size_t blocker,
-                                              double later, const Posture& posture) const {
-  const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
-  // Towards the side where the object has more room to land.
-  const double side =
-      landingRoom(state, centre, blocker, 1.0) >= landingRoom(state, centre, blocker, -1.0) ? 1.0
-                                                                                            : -1.0;
-  const Eigen::Vector3d direction = side * across_;
-  Eigen::Vector3d object = aimAt(centre, posture);
-  object += (kStraddleAhead - kFingerMiddle) * posture.fingers;
-  // Lowered with half the fingers' slack ahead of the object: the trailing finger lands as far
-  // from it as the leading one, each as far from the objects beside it as it can.
-  const double slack = halfWidth_ - kFingerThickness - halfAcross(blocker);
-  const Eigen::Vector3d start = object + 0.5 * slack * direction;
-  const Eigen::Vector3d end = object + kPushThrough * direction;
-  const double endToGoal = later + (context_.goal().position() - end).norm();
-
-  const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
-  if (onLine(link, object) && (link - object).dot(direction) <= slack + kStraddleSlack)
-    return Step{end, posture.orientation, (end - link).norm() + endToGoal, true};
-  const Transfer transfer =
-      transferOver(link, start, std::max(start.z() + kAbove, travelHeight_), kOnLine, kOnLine);
-  return Step{transfer.waypoint, posture.orientation,
               transfer.length + (end - start).norm() + endToGoal, false};
 }
 

@@ -41,9 +41,6 @@ struct PushSettings {
   /// its own pitch, if that leaves more room (the footprint is shorter as it points down); at
   /// or below the push's own pitch (the default 0): never.
   double crowdedPitch = 0.0;
-  /// Where neither stand-off beside the free space's blocker has room (at either posture), push
-  /// it from between the open fingers instead, if it fits between them (straddlePush()).
-  bool straddle = false;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -70,12 +67,6 @@ struct PushSettings {
 /// level, less as it points down), the push goes pitched down by `crowdedPitch` instead, if that
 /// leaves more: the dense scenes' corridors hold cans 1-2 cm apart.
 ///
-/// With `straddle`, a free-space blocker with no room at either stand-off (the dense scenes'
-/// cans 1-3 cm apart) is pushed from between the open fingers: the gripper is lowered around it
-/// from above, its fingers' slack shared out, and moved across towards the side where the object
-/// has more room to land; the trailing finger drives it. The stand-offs need a finger's width of
-/// room, not the gripper's.
-///
 /// The waypoints follow the object as it moves, so a push in progress goes on until the
 /// object leaves the free space (or the corridor). `remaining` is the length of the rest of
 /// this plan and on to the goal: the goal bias ranks blocked states by it, so the motions
@@ -97,7 +88,6 @@ class ClearingPush {
   /// None when the free space and the corridor are clear, or the goal has no free space or
   /// side approach.
   std::optional<Step> next(const double* state) const;
-
   /// How high the goal link travels between pushes: above the tallest movable object's top (at
   /// its home), within the workspace.
   double travelHeight() const { return travelHeight_; }
@@ -119,19 +109,6 @@ class ClearingPush {
   /// The push that clears `blocker`, held as `own` (or crowded); `later` (m) stands for the
   /// clearing still to come after it (in the remaining length).
   Step pushStep(const double* state, std::size_t blocker, double later, const Posture& own) const;
-  /// The push of `blocker` from between the open fingers, held as `posture`.
-  Step straddleStep(const double* state, std::size_t blocker, double later,
-                    const Posture& posture) const;
-  /// Whether `blocker` is pushed from between the fingers: straddling is on, it fits between
-  /// them, and neither stand-off beside it has room.
-  bool straddles(const double* state, std::size_t blocker, const Eigen::Vector3d& centre,
-                 const Posture& posture) const;
-  /// How near other objects' centres the object at `centre` passes when pushed across to the
-  /// `side` (+1 or -1) until clear of the free space.
-  double landingRoom(const double* state, const Eigen::Vector3d& centre, std::size_t blocker,
-                     double side) const;
-  /// Half the object's footprint across the approach, at the start (0 if not a movable object).
-  double halfAcross(std::size_t body) const;
   /// `own`, or the crowded posture when no stand-off has room at `own` and more at it; during a
   /// push the one nearest the gripper's pitch.
   const Posture& choosePosture(const double* state, std::size_t blocker, const Posture& own) const;
@@ -174,7 +151,6 @@ class ClearingPush {
   std::vector<Footprint> footprints_;
   double behind_ = 0.0;
   double belowCentre_ = 0.0;
-  bool straddle_ = false;
   const GoalEnd* end_ = nullptr;
 };
 

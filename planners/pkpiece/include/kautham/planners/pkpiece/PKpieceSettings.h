@@ -66,9 +66,6 @@ struct PKpieceSettings {
   /// How far a push points the gripper down (rad) when no stand-off beside the object has room
   /// for it at its own pitch (0: never steeper than its own).
   double crowdedPitch;
-  /// Where neither stand-off beside a free-space blocker has room, push it from between the
-  /// open fingers (the trailing finger drives it) towards the side with more landing room.
-  bool straddlePush;
   /// How far from the goal point a plan may aim to end (m) where an object reaches into the
   /// free space there but not at the nearer end (0: the goal point only).
   double goalShift;
@@ -240,13 +237,6 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("how far a push points the gripper down (rad) when no stand-off "
                              "beside the object leaves its footprint room at the push's own "
                              "pitch, if that leaves more (0: never steeper than its own)"))
-          .add(&S::straddlePush,
-               Parameter::flag("straddle_push")
-                   .byDefault(0)
-                   .describe("where neither stand-off beside the free space's blocker leaves "
-                             "the gripper room, lower the open fingers around it and push it "
-                             "with the trailing finger towards the side with more room to land "
-                             "(only where the object fits between the fingers)"))
           .add(&S::goalShift,
                Parameter::real("goal_shift")
                    .byDefault(0.0)
