@@ -67,17 +67,9 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
   }
 }
 
-std::vector<std::size_t> GoalFreeSpace::pointsInside(const double* state,
-                                                     const Eigen::Isometry3d& goalLink,
-                                                     std::size_t& anyInside) const {
+std::vector<GoalFreeSpace::NearShape> GoalFreeSpace::nearShapes(
+    const double* state, const Eigen::Isometry3d& goalLink) const {
   const Eigen::Vector3d boxCentre = goalLink * center_;
-  // The shapes of the bodies near the box, each with the map from world to its own frame:
-  // most objects are nowhere near the gripper and are skipped whole.
-  struct NearShape {
-    const core::Shape* shape;
-    std::size_t entry;  ///< in movable_
-    Eigen::Isometry3d toShape;
-  };
   std::vector<NearShape> near;
   for (std::size_t e = 0; e < movable_.size(); ++e) {
     const MovableBody& m = movable_[e];
@@ -89,6 +81,13 @@ std::vector<std::size_t> GoalFreeSpace::pointsInside(const double* state,
     for (std::size_t s : m.shapes)
       near.push_back({&layout_->shapes[s].shape, e, (pose * layout_->shapes[s].pose).inverse()});
   }
+  return near;
+}
+
+std::vector<std::size_t> GoalFreeSpace::pointsInside(const double* state,
+                                                     const Eigen::Isometry3d& goalLink,
+                                                     std::size_t& anyInside) const {
+  const std::vector<NearShape> near = nearShapes(state, goalLink);
   std::vector<std::size_t> counts(movable_.size(), 0);
   anyInside = 0;
   if (near.empty()) return counts;
@@ -120,7 +119,14 @@ std::vector<std::string> GoalFreeSpace::occupants(const double* state,
 }
 
 bool GoalFreeSpace::isFree(const double* state, const Eigen::Isometry3d& goalLink) const {
-  return occupants(state, goalLink).empty();
+  // Stops at the first point inside an object: the planners ask this of many poses.
+  const std::vector<NearShape> near = nearShapes(state, goalLink);
+  for (const Eigen::Vector3d& p : grid_) {
+    const Eigen::Vector3d world = goalLink * p;
+    for (const NearShape& n : near)
+      if (inside(*n.shape, n.toShape * world)) return false;
+  }
+  return true;
 }
 
 GoalFreeSpace::Occupancy GoalFreeSpace::occupancy(const double* state,

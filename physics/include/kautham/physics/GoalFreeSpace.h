@@ -44,6 +44,15 @@ class GoalFreeSpace {
     std::vector<std::size_t> shapes;
     double reach;
   };
+  /// A shape of a movable body near the box, with the map from world to its own frame.
+  struct NearShape {
+    const core::Shape* shape;
+    std::size_t entry;  ///< in movable_
+    Eigen::Isometry3d toShape;
+  };
+  /// The shapes of the bodies near the box with the goal link at `goalLink`: most objects are
+  /// nowhere near the gripper and are skipped whole.
+  std::vector<NearShape> nearShapes(const double* state, const Eigen::Isometry3d& goalLink) const;
   /// Per entry of movable_: how many grid points lie inside that body; `anyInside` gets how
   /// many lie inside some body. One pass serves occupants() and occupancy().
   std::vector<std::size_t> pointsInside(const double* state, const Eigen::Isometry3d& goalLink,
