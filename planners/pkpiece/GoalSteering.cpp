@@ -17,10 +17,6 @@ constexpr double kMetresPerRadian = 0.1;
 // The longest straight move a clearing motion aims for: the Jacobian is a linearisation, and
 // the tree steers again from where a shorter move ends.
 constexpr double kMaxStride = 0.1;  // m
-// How fast the goal link goes on the way to a push (the push's own speed is a parameter: a
-// slow push leaves the object upright and below the interaction's speed limit, where the
-// joints' full speed flings it).
-constexpr double kMoveSpeed = 0.3;  // m/s
 // The link counts as on the approach line behind the goal point within this of it: about
 // the control noise's drift over a move, well inside the goal's tolerance.
 constexpr double kOnApproachLine = 0.01;  // m
@@ -65,7 +61,8 @@ GoalSteering::GoalSteering(const physics::PlanningContext& context, MotionEvalua
       clearingOn_(clearing),
       pushSpeed_(push.speed),
       finalApproach_(approach.lineUp),
-      approachSpeed_(approach.speed) {
+      approachSpeed_(approach.speed),
+      moveSpeed_(approach.moveSpeed) {
   if (kinematic) kinematic_.emplace(context);
 }
 
@@ -84,13 +81,13 @@ std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) cons
   if (clearingOn_)
     if (const std::optional<ClearingPush::Step> step = clearing_.next(start))
       return steer(start, step->waypoint, step->orientation,
-                   step->pushing ? pushSpeed_ : kMoveSpeed);
+                   step->pushing ? pushSpeed_ : moveSpeed_);
   const std::optional<GoalEnd::Pose> end = end_.clearPose(start);
   if (!end) return std::nullopt;
   if (const std::optional<Aim> lineUp = lineUpAim(start, *end))
-    return steer(start, lineUp->position, lineUp->orientation, kMoveSpeed);
+    return steer(start, lineUp->position, lineUp->orientation, moveSpeed_);
   if (const std::optional<Aim> up = riseAim(start))
-    return steer(start, up->position, up->orientation, kMoveSpeed);
+    return steer(start, up->position, up->orientation, moveSpeed_);
   return steer(start, end->point, end->turn, approachSpeed_, Strides::Even);
 }
 

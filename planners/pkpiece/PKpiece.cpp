@@ -91,7 +91,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              settings.pushBelowCentre, settings.pushSpeed, settings.crowdedPitch},
                 settings.kinematicSteering,
                 ApproachSettings{settings.finalApproach, settings.approachPitch,
-                                 settings.approachSpeed, settings.goalShift}),
+                                 settings.approachSpeed, settings.goalShift, settings.moveSpeed}),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL) {

@@ -435,5 +435,63 @@ TEST(GoalSteeringTest, ALastMoveCappedInSpeedEndsNearerTheGoalPoint) {
   EXPECT_LT(capped, 0.5 * fast) << "full speed " << fast << " m, capped " << capped << " m";
 }
 
+/// The way to kuka_clutter_20's first push, steered with the other moves at `moveSpeed` (m/s):
+/// how many propagation steps it took, and the goal link's fastest speed over a step (m/s).
+struct WayToThePush {
+  unsigned steps = 0;
+  double fastest = 0.0;
+  bool reached = false;  ///< the gripper got to the push's line
+};
+
+WayToThePush steerToTheFirstPush(double moveSpeed) {
+  Clutter20 scene;
+  physics::PlanningContext& context = scene.context;
+  MotionEvaluator evaluator(context, 0.0);
+  ApproachSettings approach{0.05, 0.2};
+  approach.moveSpeed = moveSpeed;
+  const GoalSteering steering(context, evaluator, true, kCorridorPush, true, approach);
+  const ClearingPush clearing(context, kCorridorPush);
+  const double stepTime =
+      static_cast<const ompl::control::SpaceInformation&>(*context.spaceInformation())
+          .getPropagationStepSize();
+  WayToThePush way;
+  std::vector<double> state = context.startState();
+  for (int motion = 0; motion < 24; ++motion) {
+    const std::optional<ClearingPush::Step> step = clearing.next(state.data());
+    if (step && step->pushing) {
+      way.reached = true;
+      return way;
+    }
+    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
+    if (!steered) return way;
+    const NominalRun run =
+        evaluator.runNominal(state.data(), steered->control.data(), steered->steps);
+    if (run.steps < steered->steps) return way;
+    Eigen::Vector3d link = context.layout().goalLinkPosition(state.data());
+    for (const std::vector<double>& s : run.states) {
+      const Eigen::Vector3d next = context.layout().goalLinkPosition(s.data());
+      way.fastest = std::max(way.fastest, (next - link).norm() / stepTime);
+      link = next;
+    }
+    way.steps += run.steps;
+    state = run.end;
+  }
+  return way;
+}
+
+TEST(GoalSteeringTest, TheMovesBetweenPushesGoAtTheMoveSpeed) {
+  // From the start the gripper goes up, over the cans and down to the first push's stand-off.
+  // At 0.5 m/s (move_speed) it gets there in fewer steps than at 0.3, and at neither speed
+  // does the goal link go much faster than asked.
+  const WayToThePush slow = steerToTheFirstPush(0.3);
+  const WayToThePush fast = steerToTheFirstPush(0.5);
+  ASSERT_TRUE(slow.reached);
+  ASSERT_TRUE(fast.reached);
+  EXPECT_LT(fast.steps, slow.steps) << fast.steps << " against " << slow.steps;
+  EXPECT_GT(fast.fastest, 0.3 * 1.1) << fast.fastest << " m/s against " << slow.fastest;
+  EXPECT_LT(slow.fastest, 0.3 * 1.25);
+  EXPECT_LT(fast.fastest, 0.5 * 1.25);
+}
+
 }  // namespace
 }  // namespace kautham::planners

@@ -17,7 +17,7 @@ namespace kautham::planners {
 /// space is clear there. With `shift` > 0, where an object reaches a little way into the free
 /// space at the goal point, the nearest pose (within `shift` of the goal point, horizontally,
 /// on a 2.5 mm grid; then turned by up to 0.15 rad about the vertical, within the goal's
-/// approach tolerance) whose free space is clear with 3 mm to spare on every side (the arm ends
+/// approach tolerance) whose free space is clear with 2 mm to spare on every side (the arm ends
 /// within a few millimetres of where it is steered). The goal region allows it: the gripper
 /// may end anywhere within the tolerance, turned within the approach tolerance, and the free
 /// space moves with it. On kuka_clutter_30 a can behind the target reaches 6 mm into the free

@@ -21,6 +21,8 @@ struct ApproachSettings {
   /// m from the goal point the gripper may end instead, where an object reaches into the free
   /// space at the goal point (GoalEnd; 0: the goal point only).
   double shift = 0.0;
+  /// m/s the link goes on its other moves: to and up from a push, and to the line-up point.
+  double moveSpeed = 0.3;
 };
 
 /// A control that drives the goal link to the goal region's centre, for p-KPIECE's
@@ -131,6 +133,7 @@ class GoalSteering {
   double pushSpeed_;      ///< m/s
   double finalApproach_;  ///< m, the line-up distance
   double approachSpeed_;  ///< m/s; 0: no limit
+  double moveSpeed_;      ///< m/s
   std::optional<JointSpaceSteering> kinematic_;
   mutable std::uint64_t jacobianAims_ = 0;
 };

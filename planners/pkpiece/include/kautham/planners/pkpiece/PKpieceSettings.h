@@ -79,6 +79,9 @@ struct PKpieceSettings {
   /// The goal steering's last move goes no faster than this (m/s; 0: as fast as the joints
   /// allow).
   double approachSpeed;
+  /// How fast the goal steering moves the link elsewhere (m/s): to and up from a push, and to
+  /// the line-up point (the push's own speed is pushSpeed).
+  double moveSpeed;
   /// Before a plan ends the search, it is executed this many times open loop in sampled
   /// worlds (PlanVerifier); it ends the search only if at least goalConfidence of them
   /// succeed, and as many fresh executions then give its estimated success. 0: the
@@ -266,6 +269,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("how fast the goal steering's last move may go (m/s; 0: as fast as "
                              "the joints allow, which the arm lags and ends short of the goal "
                              "point)"))
+          .add(&S::moveSpeed,
+               Parameter::real("move_speed")
+                   .byDefault(0.3)
+                   .range(0.05, 1.0)
+                   .describe("how fast the goal steering moves the gripper between pushes: to "
+                             "and up from a push, and to the line-up point (m/s)"))
           .add(&S::verifyRuns,
                Parameter::integer("verify_runs")
                    .byDefault(50)
