@@ -7,11 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "TestPaths.h"
-#include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/pkpiece/ClearingPush.h"
 #include "kautham/planners/pkpiece/GoalSteering.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "physics/PhysicsTestSupport.h"
 
 namespace kautham::planners {
 namespace {
@@ -23,20 +22,11 @@ const PushSettings kFilePush{0.45, 0.2, 1.2};
 // the goal point.
 ApproachSettings fileApproach(double shift) { return ApproachSettings{0.05, 0.2, 0.0, shift}; }
 
-struct Clutter30 {
-  core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_30.xml"));
-  physics::PlanningContext context{problem, 0, physics::PropagationSettings{}};
-
-  std::size_t body(const std::string& name) const {
-    const auto& bodies = context.layout().bodies;
-    const auto found = std::find_if(bodies.begin(), bodies.end(),
-                                    [&](const physics::BodyInfo& b) { return b.name == name; });
-    EXPECT_NE(found, bodies.end()) << name;
-    return static_cast<std::size_t>(found - bodies.begin());
-  }
+struct Clutter30 : test::ContextFixture {
+  Clutter30() : ContextFixture("problems/kuka_clutter_30.xml") {}
   /// The start with the named cans carried (upright, at rest) to (x, y).
-  void carry(std::vector<double>& state, const std::string& name, double x, double y) const {
-    double* position = state.data() + body(name) * physics::WorldLayout::kBodyStateSize +
+  void carry(std::vector<double>& edited, const std::string& name, double x, double y) const {
+    double* position = edited.data() + body(name) * physics::WorldLayout::kBodyStateSize +
                        physics::WorldLayout::kPosition;
     position[0] = x;
     position[1] = y;
@@ -44,10 +34,10 @@ struct Clutter30 {
   /// The start as p-KPIECE's search leaves it once the corridor is clear (pKP, seed 1): can3
   /// and can6, in the wrist's way at the pre-grasp, pushed aside to -x.
   std::vector<double> corridorCleared() const {
-    std::vector<double> state = context.startState();
-    carry(state, "can3", -0.10, 0.02);
-    carry(state, "can6", -0.15, 0.06);
-    return state;
+    std::vector<double> cleared = context.startState();
+    carry(cleared, "can3", -0.10, 0.02);
+    carry(cleared, "can6", -0.15, 0.06);
+    return cleared;
   }
 };
 
