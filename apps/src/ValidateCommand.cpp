@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
@@ -30,6 +31,9 @@ namespace {
 using nlohmann::json;
 namespace fs = std::filesystem;
 
+/// The sources of uncertainty `--only` can keep.
+const std::vector<std::string> kSources{"poses", "contact", "control"};
+
 struct ValidateOptions {
   std::string problem;
   std::string plan;
@@ -38,7 +42,26 @@ struct ValidateOptions {
   std::string json;
   std::vector<std::string> modelDirs;
   std::vector<std::string> packagePaths;
+  /// The sources of uncertainty sampled (poses, contact, control); empty: all of them.
+  std::vector<std::string> only;
 };
+
+/// The problem's uncertainty less the sources `only` leaves out (none when it is empty): how
+/// much of a plan's failures one source alone causes.
+void keepOnly(core::Problem& problem, const std::vector<std::string>& only) {
+  if (only.empty()) return;
+  const auto kept = [&only](const char* source) {
+    return std::find(only.begin(), only.end(), source) != only.end();
+  };
+  if (!kept("poses"))
+    for (core::ObjectInstance& object : problem.objects) object.uncertainty = {};
+  if (!kept("contact")) {
+    problem.uncertainty.friction = 0.0;
+    problem.uncertainty.erp = 0.0;
+    problem.uncertainty.cfm = 0.0;
+  }
+  if (!kept("control")) problem.uncertainty.control = 0.0;
+}
 
 /// What validate needs of a plan file (PlanFile.cpp's format).
 struct PlanControls {
@@ -258,7 +281,8 @@ std::string describeUncertainty(const core::Problem& problem,
 int runValidate(const ValidateOptions& options) {
   applyPackagePaths(options.packagePaths);
   std::vector<fs::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
-  const core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  keepOnly(problem, options.only);
   PlanReader reader(options.plan);
   const PlanControls plan = reader.read();
   const std::size_t query = findQuery(problem, plan.query, reader);
@@ -334,7 +358,8 @@ int runValidate(const ValidateOptions& options) {
              problem.queries[query].name);
   fmt::print("plan         {}: {} controls, {:.2f} s of motion\n", options.plan,
              plan.controls.size(), motion);
-  fmt::print("uncertainty  {}\n", describeUncertainty(problem, sampler));
+  fmt::print("uncertainty  {}{}\n", describeUncertainty(problem, sampler),
+             options.only.empty() ? "" : fmt::format(" (only {})", fmt::join(options.only, ", ")));
   fmt::print("runs         {} (seed {})\n", options.runs, options.seed);
   fmt::print("success      {}/{} = {:.1f} %, 95 % Wilson interval [{:.1f} %, {:.1f} %]\n",
              successes, options.runs, 100.0 * rate, 100.0 * ci.low, 100.0 * ci.high);
@@ -366,6 +391,7 @@ int runValidate(const ValidateOptions& options) {
         {"plan", options.plan},
         {"runs", options.runs},
         {"seed", options.seed},
+        {"sources", options.only.empty() ? json(kSources) : json(options.only)},
         {"successes", successes},
         {"success_rate", rate},
         {"confidence_interval",
@@ -401,10 +427,18 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
   command->add_option("--json", options->json, "write the numbers to this JSON file");
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
+  command
+      ->add_option("--only", options->only,
+                   "sample only this source of uncertainty (repeatable): poses (objects' and the "
+                   "target's start poses), contact (friction, ERP, CFM) or control (noise); the "
+                   "others stay at their means")
+      ->check(CLI::IsMember(kSources))
+      ->allow_extra_args(false);
   addPackagePathOption(*command, options->packagePaths);
   command->footer(
       "Exit codes: 0 it ran (whatever the success rate), 2 bad input.\n"
-      "Example: kautham validate problems/pusher_cans_5.xml out/plan.json --runs 100");
+      "Example: kautham validate problems/pusher_cans_5.xml out/plan.json --runs 100\n"
+      "Which source makes it fail: ... --runs 100 --only control, then --only poses");
   command->callback([options, &exitCode] {
     exitCode = runReportingErrors([&] { return runValidate(*options); });
   });

@@ -117,6 +117,43 @@ TEST_F(ValidateCommandTest, LargeUncertaintyMakesRunsFailAndCountsWhy) {
   EXPECT_EQ(readJson(json), report);
 }
 
+TEST_F(ValidateCommandTest, OnlyTheSourcesAskedForAreSampled) {
+  // The plan executed in worlds where one source of uncertainty is sampled and the others stay
+  // at their means: the report says which; all three together are the problem's own.
+  const std::string command =
+      "validate tests/data/pusher_cans_5_uncertain.xml " + quoted(plan()) + " --runs 20 --seed 3";
+  const CommandRun all = kautham(command);
+  ASSERT_EQ(all.exitCode, 0) << all.output;
+
+  const fs::path json = folder / "control.json";
+  const CommandRun control = kautham(command + " --only control --json " + quoted(json));
+  ASSERT_EQ(control.exitCode, 0) << control.output;
+  EXPECT_NE(control.output.find("uncertainty  poses of 0 objects (sd up to x 0 m, y 0 m, yaw 0 "
+                                "rad); sd of friction 0, erp 0, cfm 0; control sd 0.1 (only "
+                                "control)"),
+            std::string::npos)
+      << control.output;
+  EXPECT_EQ(readJson(json)["sources"], nlohmann::json::array({"control"}));
+  // Without the pose and contact draws the runs differ from the problem's.
+  EXPECT_NE(control.output.substr(control.output.find("success")),
+            all.output.substr(all.output.find("success")));
+
+  const CommandRun poses = kautham(command + " --only poses");
+  ASSERT_EQ(poses.exitCode, 0) << poses.output;
+  EXPECT_NE(poses.output.find("sd of friction 0, erp 0, cfm 0; control sd 0 (only poses)"),
+            std::string::npos)
+      << poses.output;
+
+  const CommandRun everything = kautham(command + " --only poses --only contact --only control");
+  ASSERT_EQ(everything.exitCode, 0) << everything.output;
+  EXPECT_EQ(everything.output.substr(everything.output.find("runs ")),
+            all.output.substr(all.output.find("runs ")));
+
+  const CommandRun bad = kautham(command + " --only friction");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.output.find("friction"), std::string::npos) << bad.output;
+}
+
 TEST_F(ValidateCommandTest, EachRunHasItsOwnStreamSoFewerRunsAreAPrefix) {
   const fs::path few = folder / "few.json", many = folder / "many.json";
   const std::string base =
