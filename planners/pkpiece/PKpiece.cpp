@@ -623,7 +623,7 @@ std::vector<std::pair<const PKpiece::Motion*, unsigned>> PKpiece::planSegments(c
 }
 
 bool PKpiece::passesVerification(Motion* end) {
-  if (!withParticles() || settings_.verifyRuns == 0) return true;
+  if (!settings_.uncertainty || settings_.verifyRuns == 0) return true;
   std::vector<physics::ControlStep> controls;
   for (const auto& [motion, steps] : planSegments(end))
     controls.push_back({motion->control, steps});
@@ -676,9 +676,15 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     cell->score *= added ? kGoodScoreFactor : kBadScoreFactor;
     ++iteration_;
     grid_.updateAll();  // beliefs are normalised over all cells: every importance changes
-    if (added && added->reachesGoal && passesVerification(added)) {
-      recordSolution(added, true, added->goalDistance);
-      return ompl::base::PlannerStatus::EXACT_SOLUTION;
+    if (added && added->reachesGoal) {
+      if (passesVerification(added)) {
+        recordSolution(added, true, added->goalDistance);
+        return ompl::base::PlannerStatus::EXACT_SOLUTION;
+      }
+      if (settings_.restartOnRejection) {
+        startAfresh();
+        continue;
+      }
     }
     if (stalled()) startAfresh();
   }

@@ -270,6 +270,32 @@ TEST(PKpieceTest, APlanEndsTheSearchOnlyIfEnoughOfItsExecutionsSucceed) {
   EXPECT_EQ(nominal.property("verifications"), "0");
 }
 
+TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheTreeAfresh) {
+  // particles 0: the nominal runs alone grow the tree, as without uncertainty, but a plan still
+  // ends the search only if enough of its executions in sampled worlds succeed; with
+  // restart_on_rejection every plan that fails starts a new tree. The same plan at any --threads.
+  const std::vector<ParameterOverride> oneThread = {{"particles", "0"},
+                                                    {"verify_runs", "20"},
+                                                    {"goal_confidence", "0.4"},
+                                                    {"restart_on_rejection", "1"}};
+  std::vector<ParameterOverride> twoThreads = oneThread;
+  twoThreads.push_back({"threads", "2"});
+  const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, oneThread);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_EQ(run.property("particles"), "0");
+  const long verifications = std::stol(run.property("verifications"));
+  const long rejections = std::stol(run.property("verification_rejections"));
+  EXPECT_GE(rejections, 1);  // this seed's first plans fail
+  EXPECT_EQ(rejections, verifications - 1);
+  EXPECT_GE(std::stol(run.property("restarts")), rejections);
+  const double confidence = std::stod(run.property("solution_confidence"));
+  EXPECT_NEAR(confidence * 20.0, std::round(confidence * 20.0), 1e-9);
+  const PlanRun again = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, twoThreads);
+  expectSameControls(run, again);
+  EXPECT_EQ(run.property("restarts"), again.property("restarts"));
+}
+
 TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
   // The diagnosis behind `kautham plan`'s "failed" line: each failed particle once, under the
   // rule its first invalid state broke (named by the object that broke it), most frequent

@@ -9,8 +9,10 @@ namespace kautham::planners {
 /// field's name, default, range and description is declared once, in parameters() below;
 /// settings come from there (parameters().read or defaults()), never from this struct alone.
 struct PKpieceSettings {
-  unsigned candidates;     ///< k: candidate motions sampled per expansion
-  unsigned particles;      ///< n_p: particle motions per valid candidate
+  unsigned candidates;  ///< k: candidate motions sampled per expansion
+  /// n_p: particle motions per valid candidate; 0: the nominal run alone judges it (as without
+  /// uncertainty), and verifyRuns executions in sampled worlds still judge the whole plan.
+  unsigned particles;
   double displacement;     ///< d: most an object may move in one particle motion (m)
   double randomCandidate;  ///< bias: probability of keeping a random valid candidate
   double beliefWeight;     ///< f: weight of the cell belief; <= 0: the number of cells
@@ -90,6 +92,9 @@ struct PKpieceSettings {
   /// The tree is started afresh from the start state after this many expansions in which the
   /// motion nearest the goal (by the goal bias's ranking) came no centimetre nearer. 0: never.
   unsigned restartAfter;
+  /// A plan that fails verification starts the tree afresh: grown on, the tree mostly reaches
+  /// the goal again through the rejected plan's pushes.
+  bool restartOnRejection;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -109,8 +114,11 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                                    .alias("k"))
           .add(&S::particles, Parameter::integer("particles")
                                   .byDefault(15)
-                                  .range(1, 10000)
-                                  .describe("n_p: particle motions that judge each valid candidate")
+                                  .range(0, 10000)
+                                  .describe("n_p: particle motions that judge each valid "
+                                            "candidate (0: its nominal run alone; with "
+                                            "uncertainty and verify_runs, whole plans are "
+                                            "still verified in sampled worlds)")
                                   .alias("n_p")
                                   .alias("np"))
           .add(&S::displacement,
@@ -288,6 +296,11 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0, 100000000)
                    .describe("start the tree afresh after this many expansions in which the "
                              "motion nearest the goal came no centimetre nearer (0: never)"))
+          .add(&S::restartOnRejection,
+               Parameter::flag("restart_on_rejection")
+                   .byDefault(0)
+                   .describe("start the tree afresh when a plan fails verification (grown on, "
+                             "the tree mostly reaches the goal through the same pushes again)"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")
