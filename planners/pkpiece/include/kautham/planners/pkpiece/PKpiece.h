@@ -126,8 +126,9 @@ class PKpiece : public ompl::base::Planner,
   /// its steps.
   static std::vector<std::pair<const Motion*, unsigned>> planSegments(const Motion* end);
   /// Whether the plan ending with `end` (a motion that reaches the goal) may end the search:
-  /// with verifyRuns, only if enough of its sampled executions succeed (PlanVerifier); then
-  /// as many fresh executions give its estimated success. A plan that fails stays in the tree.
+  /// with uncertainty and verifyRuns (with particles or without), only if enough of its sampled
+  /// executions succeed (PlanVerifier); then as many fresh executions give its estimated
+  /// success. A plan that fails stays in the tree (restartOnRejection: a new tree follows).
   bool passesVerification(Motion* end);
   std::uint64_t nextStreamSeed();
   /// Adds a root motion at the start state to an empty tree.
