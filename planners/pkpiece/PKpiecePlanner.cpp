@@ -23,6 +23,16 @@ void checkApproachPitch(double pitch, const physics::GoalSpec& goal) {
   throw std::invalid_argument(message.str());
 }
 
+/// Without particles only the verification judges a plan under uncertainty: with neither, the
+/// plan would end the search unjudged, its estimate a nominal 100 %.
+void checkSomethingJudges(const PKpieceSettings& settings) {
+  if (!settings.uncertainty || settings.particles > 0 || settings.verifyRuns > 0) return;
+  throw std::invalid_argument(
+      "particles 0 with verify_runs 0: nothing would judge the plan under uncertainty; set "
+      "verify_runs > 0 (whole plans verified, 50 by default), particles > 0, or uncertainty 0 "
+      "(the paper's pKP)");
+}
+
 PlannerRegistry::Entry pKpiece() {
   return plannerEntry<PKpieceSettings>(
       "p-KPIECE",
@@ -34,6 +44,7 @@ PlannerRegistry::Entry pKpiece() {
         if (resolved.displacement <= 0.0)
           resolved.displacement = context.problem().interaction.maxDisplacement;
         checkApproachPitch(resolved.approachPitch, context.goal().spec());
+        checkSomethingJudges(resolved);
         return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, resolved));
       });
 }

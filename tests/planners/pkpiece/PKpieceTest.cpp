@@ -296,6 +296,25 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
   EXPECT_EQ(run.property("restarts"), again.property("restarts"));
 }
 
+TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {
+  // Nothing would judge the plan under the uncertainty; without uncertainty (pKP) it is fine.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_5.xml"));
+  const PlanRequest unjudged = makeRequest(
+      problem, "p-KPIECE", {{"particles", "0"}, {"verify_runs", "0"}}, seedRandomness(1));
+  physics::PlanningContext context(problem, 0, unjudged.propagation());
+  try {
+    solve(context, unjudged);
+    ADD_FAILURE() << "particles 0 with verify_runs 0 was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("verify_runs"), std::string::npos) << e.what();
+  }
+  const PlanRequest nominal = makeRequest(
+      problem, "p-KPIECE",
+      {{"particles", "0"}, {"verify_runs", "0"}, {"uncertainty", "0"}, {"time_limit", "0.1"}},
+      seedRandomness(1));
+  EXPECT_NO_THROW(solve(context, nominal));
+}
+
 TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
   // The diagnosis behind `kautham plan`'s "failed" line: each failed particle once, under the
   // rule its first invalid state broke (named by the object that broke it), most frequent
