@@ -46,6 +46,23 @@ PlanRun plan(const std::string& file, const std::string& planner, std::uint32_t 
   return run;
 }
 
+/// `overrides` with the particles spread over two worker processes.
+std::vector<ParameterOverride> withTwoThreads(std::vector<ParameterOverride> overrides) {
+  overrides.push_back({"threads", "2"});
+  return overrides;
+}
+
+/// Making the planner for `request` fails with an error that names `parameter`.
+void expectRefused(physics::PlanningContext& context, const PlanRequest& request,
+                   const std::string& parameter) {
+  try {
+    solve(context, request);
+    ADD_FAILURE() << "the " << parameter << " setting was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(parameter), std::string::npos) << e.what();
+  }
+}
+
 /// The two plans hold the same controls, held for the same steps.
 void expectSameControls(const PlanRun& a, const PlanRun& b) {
   ASSERT_EQ(a.outcome.controls.size(), b.outcome.controls.size());
@@ -125,10 +142,9 @@ TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {
                                               {"verify_runs", "10"},
                                               {"goal_confidence", "0.2"},
                                               {"restart_after", "1"}};
-  std::vector<ParameterOverride> twoThreads = oneThread;
-  twoThreads.push_back({"threads", "2"});
   const PlanRun first = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, oneThread);
-  const PlanRun second = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, twoThreads);
+  const PlanRun second =
+      plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, withTwoThreads(oneThread));
   ASSERT_TRUE(first.outcome.solved);
   EXPECT_GE(std::stol(first.property("restarts")), 1);
   EXPECT_EQ(first.property("restarts"), second.property("restarts"));
@@ -228,12 +244,7 @@ TEST(PKpieceTest, AnApproachPitchBeyondTheGoalsToleranceIsRejected) {
   const PlanRequest tooSteep =
       makeRequest(problem, "p-KPIECE", {{"approach_pitch", "0.45"}}, seedRandomness(1));
   physics::PlanningContext context(problem, 0, tooSteep.propagation());
-  try {
-    solve(context, tooSteep);
-    ADD_FAILURE() << "approach_pitch 0.45 was accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("approach_pitch"), std::string::npos) << e.what();
-  }
+  expectRefused(context, tooSteep, "approach_pitch");
   const PlanRequest atTheLimit = makeRequest(
       problem, "p-KPIECE", {{"approach_pitch", "0.3"}, {"time_limit", "0.1"}}, seedRandomness(1));
   EXPECT_NO_THROW(solve(context, atTheLimit));
@@ -278,8 +289,6 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
                                                     {"verify_runs", "20"},
                                                     {"goal_confidence", "0.4"},
                                                     {"restart_on_rejection", "1"}};
-  std::vector<ParameterOverride> twoThreads = oneThread;
-  twoThreads.push_back({"threads", "2"});
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, oneThread);
   ASSERT_TRUE(run.outcome.solved);
   EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
@@ -291,7 +300,8 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
   EXPECT_GE(std::stol(run.property("restarts")), rejections);
   const double confidence = std::stod(run.property("solution_confidence"));
   EXPECT_NEAR(confidence * 20.0, std::round(confidence * 20.0), 1e-9);
-  const PlanRun again = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, twoThreads);
+  const PlanRun again =
+      plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, withTwoThreads(oneThread));
   expectSameControls(run, again);
   EXPECT_EQ(run.property("restarts"), again.property("restarts"));
 }
@@ -302,12 +312,7 @@ TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {
   const PlanRequest unjudged = makeRequest(
       problem, "p-KPIECE", {{"particles", "0"}, {"verify_runs", "0"}}, seedRandomness(1));
   physics::PlanningContext context(problem, 0, unjudged.propagation());
-  try {
-    solve(context, unjudged);
-    ADD_FAILURE() << "particles 0 with verify_runs 0 was accepted";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("verify_runs"), std::string::npos) << e.what();
-  }
+  expectRefused(context, unjudged, "verify_runs");
   const PlanRequest nominal = makeRequest(
       problem, "p-KPIECE",
       {{"particles", "0"}, {"verify_runs", "0"}, {"uncertainty", "0"}, {"time_limit", "0.1"}},
@@ -320,10 +325,9 @@ TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
   // rule its first invalid state broke (named by the object that broke it), most frequent
   // first; the particles are the same at any --threads, so the tally is too.
   const std::vector<ParameterOverride> small = {{"particles", "5"}, {"candidates", "4"}};
-  std::vector<ParameterOverride> twoThreads = small;
-  twoThreads.push_back({"threads", "2"});
   const PlanRun one = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
-  const PlanRun two = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, twoThreads);
+  const PlanRun two =
+      plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, withTwoThreads(small));
   const std::vector<FailureCount>& failures = one.outcome.sampledFailures;
   ASSERT_FALSE(failures.empty());
   std::uint64_t failed = 0;
