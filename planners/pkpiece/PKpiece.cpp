@@ -114,6 +114,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   addPlannerProgressProperty("verification_rejections INTEGER",
                              [this] { return std::to_string(verificationRejections_); });
   // Sampled executions run by the verifications and the estimate (verify_runs each at most).
+  // Plans that passed verification and were kept to choose from (plans > 1).
+  addPlannerProgressProperty("verified_plans INTEGER",
+                             [this] { return std::to_string(verified_.size()); });
   addPlannerProgressProperty("verification_runs INTEGER",
                              [this] { return std::to_string(verificationRuns_); });
   // Goal-biased expansions: candidates aimed by the goal steering, those valid from their first
@@ -175,6 +178,7 @@ void PKpiece::clear() {
   verifications_ = 0;
   verificationRejections_ = 0;
   verificationRuns_ = 0;
+  verified_.clear();
   closest_ = nullptr;
   expansionsSinceProgress_ = 0;
   restarts_ = 0;
@@ -622,11 +626,17 @@ std::vector<std::pair<const PKpiece::Motion*, unsigned>> PKpiece::planSegments(c
   return segments;
 }
 
-bool PKpiece::passesVerification(Motion* end) {
-  if (!settings_.uncertainty || settings_.verifyRuns == 0) return true;
+std::vector<physics::ControlStep> PKpiece::planControls(const Motion* end) {
   std::vector<physics::ControlStep> controls;
   for (const auto& [motion, steps] : planSegments(end))
     controls.push_back({motion->control, steps});
+  return controls;
+}
+
+bool PKpiece::passesVerification(Motion* end) {
+  lastVerification_ = VerificationResult();
+  if (!settings_.uncertainty || settings_.verifyRuns == 0) return true;
+  const std::vector<physics::ControlStep> controls = planControls(end);
   ++verifications_;
   const VerificationResult result =
       verifier_.verify(controls, settings_.verifyRuns, settings_.goalConfidence);
@@ -637,11 +647,35 @@ bool PKpiece::passesVerification(Motion* end) {
     const VerificationResult fresh = verifier_.measure(controls, settings_.verifyRuns);
     verificationRuns_ += fresh.runs;
     end->successEstimate = fresh.rate();
+    lastVerification_.runs = result.runs + fresh.runs;
+    lastVerification_.successes = result.successes + fresh.successes;
     return true;
   }
   ++verificationRejections_;
   end->reachesGoal = false;
   return false;
+}
+
+bool PKpiece::collectedEnough(Motion* end) {
+  verified_.push_back({end, lastVerification_.runs, lastVerification_.successes});
+  return verified_.size() >= settings_.plans;
+}
+
+PKpiece::Motion* PKpiece::bestCollected() {
+  if (verified_.empty()) return nullptr;
+  const VerifiedPlan* best = &verified_.front();
+  for (const VerifiedPlan& plan : verified_)
+    // Cross-multiplied rates: exact, so equals stay equal and the first of them wins.
+    if (static_cast<std::uint64_t>(plan.successes) * best->runs >
+        static_cast<std::uint64_t>(best->successes) * plan.runs)
+      best = &plan;
+  if (verified_.size() > 1) {
+    const VerificationResult fresh =
+        verifier_.measure(planControls(best->end), settings_.verifyRuns);
+    verificationRuns_ += fresh.runs;
+    best->end->successEstimate = fresh.rate();
+  }
+  return best->end;
 }
 
 void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
@@ -678,7 +712,12 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     grid_.updateAll();  // beliefs are normalised over all cells: every importance changes
     if (added && added->reachesGoal) {
       if (passesVerification(added)) {
-        recordSolution(added, true, added->goalDistance);
+        if (!collectedEnough(added)) {
+          startAfresh();
+          continue;
+        }
+        Motion* best = bestCollected();
+        recordSolution(best, true, best->goalDistance);
         return ompl::base::PlannerStatus::EXACT_SOLUTION;
       }
       if (settings_.restartOnRejection) {
@@ -687,6 +726,11 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
       }
     }
     if (stalled()) startAfresh();
+  }
+  if (!verified_.empty()) {
+    Motion* best = bestCollected();
+    recordSolution(best, true, best->goalDistance);
+    return ompl::base::PlannerStatus::EXACT_SOLUTION;
   }
   if (!closest_ || closest_->parent == nullptr) return ompl::base::PlannerStatus::TIMEOUT;
   recordSolution(closest_, false, closest_->goalDistance);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/pkpiece/PKpiece.h"
@@ -33,6 +34,14 @@ void checkSomethingJudges(const PKpieceSettings& settings) {
       "(the paper's pKP)");
 }
 
+/// Choosing among several plans needs each one's measured success: only verification has it.
+void checkPlansCanBeCompared(const PKpieceSettings& settings) {
+  if (settings.plans <= 1 || (settings.uncertainty && settings.verifyRuns > 0)) return;
+  throw std::invalid_argument(
+      "plans " + std::to_string(settings.plans) +
+      " needs verified plans to choose from: set uncertainty 1 and verify_runs > 0, or plans 1");
+}
+
 PlannerRegistry::Entry pKpiece() {
   return plannerEntry<PKpieceSettings>(
       "p-KPIECE",
@@ -45,6 +54,7 @@ PlannerRegistry::Entry pKpiece() {
           resolved.displacement = context.problem().interaction.maxDisplacement;
         checkApproachPitch(resolved.approachPitch, context.goal().spec());
         checkSomethingJudges(resolved);
+        checkPlansCanBeCompared(resolved);
         return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, resolved));
       });
 }

@@ -306,6 +306,50 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
   EXPECT_EQ(run.property("restarts"), again.property("restarts"));
 }
 
+TEST(PKpieceTest, CollectsVerifiedPlansFromNewTreesAndReturnsOneOfThem) {
+  // plans 3: each plan that passes verification starts a new tree until three have passed;
+  // the one that succeeded most often is returned, its estimate measured again by 20 fresh
+  // runs. The same plan, from the same trees, at any --threads.
+  const std::vector<ParameterOverride> oneThread = {{"particles", "0"},
+                                                    {"verify_runs", "20"},
+                                                    {"goal_confidence", "0.4"},
+                                                    {"restart_on_rejection", "1"},
+                                                    {"plans", "3"}};
+  const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, oneThread);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_EQ(run.property("verified_plans"), "3");
+  const long verifications = std::stol(run.property("verifications"));
+  const long rejections = std::stol(run.property("verification_rejections"));
+  EXPECT_EQ(verifications - rejections, 3);
+  // A new tree after each rejection and after each of the first two plans.
+  EXPECT_GE(std::stol(run.property("restarts")), rejections + 2);
+  const double confidence = std::stod(run.property("solution_confidence"));
+  EXPECT_NEAR(confidence * 20.0, std::round(confidence * 20.0), 1e-9);
+  // Every passed plan ran 20 verification runs at most and 20 estimate runs, rejected ones at
+  // most 20; the chosen one 20 more.
+  EXPECT_LE(std::stol(run.property("verification_runs")), 20 * (verifications + 3 + 1));
+  const PlanRun again =
+      plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, withTwoThreads(oneThread));
+  expectSameControls(run, again);
+  EXPECT_EQ(run.property("solution_confidence"), again.property("solution_confidence"));
+}
+
+TEST(PKpieceTest, SeveralPlansWithoutVerificationAreRejected) {
+  // Nothing measures the plans to choose among: pKP's, or particles' estimates alone.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_5.xml"));
+  physics::PlanningContext context(
+      problem, 0, makeRequest(problem, "p-KPIECE", {}, seedRandomness(1)).propagation());
+  expectRefused(
+      context,
+      makeRequest(problem, "p-KPIECE", {{"plans", "2"}, {"uncertainty", "0"}}, seedRandomness(1)),
+      "plans");
+  expectRefused(
+      context,
+      makeRequest(problem, "p-KPIECE", {{"plans", "2"}, {"verify_runs", "0"}}, seedRandomness(1)),
+      "plans");
+}
+
 TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {
   // Nothing would judge the plan under the uncertainty; without uncertainty (pKP) it is fine.
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_5.xml"));

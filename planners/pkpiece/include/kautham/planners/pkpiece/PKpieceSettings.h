@@ -95,6 +95,11 @@ struct PKpieceSettings {
   /// A plan that fails verification starts the tree afresh: grown on, the tree mostly reaches
   /// the goal again through the rejected plan's pushes.
   bool restartOnRejection;
+  /// Verified plans to collect before the search ends (needs verification): each one that
+  /// passes starts a new tree, and the plan that succeeded most often over its verification
+  /// and estimate runs is returned, its estimate measured again by fresh runs. When the time
+  /// runs out first, the best of those collected is returned.
+  unsigned plans;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -301,6 +306,10 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(0)
                    .describe("start the tree afresh when a plan fails verification (grown on, "
                              "the tree mostly reaches the goal through the same pushes again)"))
+          .add(&S::plans, Parameter::integer("plans").byDefault(1).range(1, 1000).describe(
+                              "verified plans to collect, each from a new tree, before the one "
+                              "that succeeded most often is returned (the best so far when the "
+                              "time runs out; needs uncertainty and verify_runs > 0)"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")
