@@ -69,9 +69,12 @@ std::string obstacleXml(const std::string& urdf, const std::string& role, const 
       urdf, role, name, x, y, z);
 }
 
-std::string tablePhysicsXml() {
-  return "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "
-         "solverIterations=\"20\"\n"
+std::string tablePhysicsXml(int solverIterations, const std::string& iterationsComment) {
+  return iterationsComment +
+         fmt::format(
+             "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "
+             "solverIterations=\"{}\"\n",
+             solverIterations) +
          "           friction=\"0.5\" erp=\"0.2\" cfm=\"1e-5\"/>\n"
          "  <!-- what is known only roughly: object poses to 5 mm and 0.05 rad, friction to 0.05,\n"
          "       joint speeds to 0.2 % of their limits (p-KPIECE plans for it; validate samples "

@@ -45,7 +45,8 @@ std::string obstacleXml(const std::string& urdf, const std::string& role, const 
                         const std::string& x, const std::string& y, const std::string& z);
 
 /// The <Physics>, <Uncertainty> and <Interaction> elements every generated table scene
-/// shares (a commented block of the file).
-std::string tablePhysicsXml();
+/// shares (a commented block of the file), with `solverIterations` QuickStep iterations and,
+/// before the <Physics> element, `iterationsComment` (whole lines: why that many).
+std::string tablePhysicsXml(int solverIterations = 20, const std::string& iterationsComment = "");
 
 }  // namespace kautham::apps::placement
