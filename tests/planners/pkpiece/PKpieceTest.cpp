@@ -52,6 +52,15 @@ std::vector<ParameterOverride> withTwoThreads(std::vector<ParameterOverride> ove
   return overrides;
 }
 
+/// p-KPIECE as generate and test on pusher_cans_uncertain: no particles, each plan verified by
+/// 20 executions (8 must succeed), a new tree after a rejected plan.
+std::vector<ParameterOverride> generateAndTest() {
+  return {{"particles", "0"},
+          {"verify_runs", "20"},
+          {"goal_confidence", "0.4"},
+          {"restart_on_rejection", "1"}};
+}
+
 /// Making the planner for `request` fails with an error that names `parameter`.
 void expectRefused(physics::PlanningContext& context, const PlanRequest& request,
                    const std::string& parameter) {
@@ -285,10 +294,7 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
   // particles 0: the nominal runs alone grow the tree, as without uncertainty, but a plan still
   // ends the search only if enough of its executions in sampled worlds succeed; with
   // restart_on_rejection every plan that fails starts a new tree. The same plan at any --threads.
-  const std::vector<ParameterOverride> oneThread = {{"particles", "0"},
-                                                    {"verify_runs", "20"},
-                                                    {"goal_confidence", "0.4"},
-                                                    {"restart_on_rejection", "1"}};
+  const std::vector<ParameterOverride> oneThread = generateAndTest();
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, oneThread);
   ASSERT_TRUE(run.outcome.solved);
   EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
@@ -310,11 +316,8 @@ TEST(PKpieceTest, CollectsVerifiedPlansFromNewTreesAndReturnsOneOfThem) {
   // plans 3: each plan that passes verification starts a new tree until three have passed;
   // the one that succeeded most often is returned, its estimate measured again by 20 fresh
   // runs. The same plan, from the same trees, at any --threads.
-  const std::vector<ParameterOverride> oneThread = {{"particles", "0"},
-                                                    {"verify_runs", "20"},
-                                                    {"goal_confidence", "0.4"},
-                                                    {"restart_on_rejection", "1"},
-                                                    {"plans", "3"}};
+  std::vector<ParameterOverride> oneThread = generateAndTest();
+  oneThread.push_back({"plans", "3"});
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 1, oneThread);
   ASSERT_TRUE(run.outcome.solved);
   EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
