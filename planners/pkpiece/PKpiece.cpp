@@ -113,10 +113,10 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(verifications_); });
   addPlannerProgressProperty("verification_rejections INTEGER",
                              [this] { return std::to_string(verificationRejections_); });
-  // Sampled executions run by the verifications and the estimate (verify_runs each at most).
   // Plans that passed verification and were kept to choose from (plans > 1).
   addPlannerProgressProperty("verified_plans INTEGER",
                              [this] { return std::to_string(verified_.size()); });
+  // Sampled executions run by the verifications and the estimate (verify_runs each at most).
   addPlannerProgressProperty("verification_runs INTEGER",
                              [this] { return std::to_string(verificationRuns_); });
   // Goal-biased expansions: candidates aimed by the goal steering, those valid from their first
@@ -633,9 +633,8 @@ std::vector<physics::ControlStep> PKpiece::planControls(const Motion* end) {
   return controls;
 }
 
-bool PKpiece::passesVerification(Motion* end) {
-  lastVerification_ = VerificationResult();
-  if (!settings_.uncertainty || settings_.verifyRuns == 0) return true;
+std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
+  if (!settings_.uncertainty || settings_.verifyRuns == 0) return VerifiedPlan{end, 0, 0};
   const std::vector<physics::ControlStep> controls = planControls(end);
   ++verifications_;
   const VerificationResult result =
@@ -647,22 +646,14 @@ bool PKpiece::passesVerification(Motion* end) {
     const VerificationResult fresh = verifier_.measure(controls, settings_.verifyRuns);
     verificationRuns_ += fresh.runs;
     end->successEstimate = fresh.rate();
-    lastVerification_.runs = result.runs + fresh.runs;
-    lastVerification_.successes = result.successes + fresh.successes;
-    return true;
+    return VerifiedPlan{end, result.runs + fresh.runs, result.successes + fresh.successes};
   }
   ++verificationRejections_;
   end->reachesGoal = false;
-  return false;
+  return std::nullopt;
 }
 
-bool PKpiece::collectedEnough(Motion* end) {
-  verified_.push_back({end, lastVerification_.runs, lastVerification_.successes});
-  return verified_.size() >= settings_.plans;
-}
-
-PKpiece::Motion* PKpiece::bestCollected() {
-  if (verified_.empty()) return nullptr;
+ompl::base::PlannerStatus PKpiece::returnBestCollected() {
   const VerifiedPlan* best = &verified_.front();
   for (const VerifiedPlan& plan : verified_)
     // Cross-multiplied rates: exact, so equals stay equal and the first of them wins.
@@ -675,7 +666,8 @@ PKpiece::Motion* PKpiece::bestCollected() {
     verificationRuns_ += fresh.runs;
     best->end->successEstimate = fresh.rate();
   }
-  return best->end;
+  recordSolution(best->end, true, best->end->goalDistance);
+  return ompl::base::PlannerStatus::EXACT_SOLUTION;
 }
 
 void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
@@ -711,14 +703,11 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     ++iteration_;
     grid_.updateAll();  // beliefs are normalised over all cells: every importance changes
     if (added && added->reachesGoal) {
-      if (passesVerification(added)) {
-        if (!collectedEnough(added)) {
-          startAfresh();
-          continue;
-        }
-        Motion* best = bestCollected();
-        recordSolution(best, true, best->goalDistance);
-        return ompl::base::PlannerStatus::EXACT_SOLUTION;
+      if (const std::optional<VerifiedPlan> plan = verifyPlan(added)) {
+        verified_.push_back(*plan);
+        if (verified_.size() >= settings_.plans) return returnBestCollected();
+        startAfresh();
+        continue;
       }
       if (settings_.restartOnRejection) {
         startAfresh();
@@ -727,11 +716,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     }
     if (stalled()) startAfresh();
   }
-  if (!verified_.empty()) {
-    Motion* best = bestCollected();
-    recordSolution(best, true, best->goalDistance);
-    return ompl::base::PlannerStatus::EXACT_SOLUTION;
-  }
+  if (!verified_.empty()) return returnBestCollected();
   if (!closest_ || closest_->parent == nullptr) return ompl::base::PlannerStatus::TIMEOUT;
   recordSolution(closest_, false, closest_->goalDistance);
   return ompl::base::PlannerStatus::APPROXIMATE_SOLUTION;

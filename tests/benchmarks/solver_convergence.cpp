@@ -72,8 +72,8 @@ double tilt(const double* state, std::size_t body) {
   return std::acos(std::clamp(up.z(), -1.0, 1.0));
 }
 
-/// The largest gap between the two states over the bodies of `role` (position, m) and over the
-/// movable objects' tilts (rad).
+/// The largest gap between two states: over the robot's bodies and over the objects' bodies
+/// (position, m), and over the objects' tilts (rad).
 struct Gap {
   double robot = 0.0;
   double objects = 0.0;

@@ -125,20 +125,24 @@ class PKpiece : public ompl::base::Planner,
   /// execution with control noise must draw it: once). Each segment is its last motion and
   /// its steps.
   static std::vector<std::pair<const Motion*, unsigned>> planSegments(const Motion* end);
-  /// Whether the plan ending with `end` (a motion that reaches the goal) may end the search:
+  /// A plan that passed verification, kept until the search has `plans` of them.
+  struct VerifiedPlan {
+    Motion* end = nullptr;
+    unsigned runs = 0;       ///< its verification and estimate runs (0 without verification)
+    unsigned successes = 0;  ///< of those, the ones that succeeded
+  };
+  /// The plan ending with `end` (a motion that reaches the goal) if it may end the search:
   /// with uncertainty and verifyRuns (with particles or without), only if enough of its sampled
   /// executions succeed (PlanVerifier); then as many fresh executions give its estimated
   /// success. A plan that fails stays in the tree (restartOnRejection: a new tree follows).
-  bool passesVerification(Motion* end);
+  std::optional<VerifiedPlan> verifyPlan(Motion* end);
   /// The plan ending with `end` as an execution runs it: one control per segment.
   static std::vector<physics::ControlStep> planControls(const Motion* end);
-  /// Whether the search has as many verified plans as it asks for (plans); before, the plan
-  /// just verified is kept among them and the tree starts afresh.
-  bool collectedEnough(Motion* end);
-  /// The collected plan that succeeded most often over all its verification and estimate
-  /// runs (the first of equals); with more than one to choose from, fresh runs measure its
-  /// estimate again, since the choice favours plans whose runs went well.
-  Motion* bestCollected();
+  /// Records the collected plan (verified_, not empty) that succeeded most often over all its
+  /// verification and estimate runs (the first of equals) as the solution; with more than one to
+  /// choose from, fresh runs measure its estimate again, since the choice favours plans whose
+  /// runs went well.
+  ompl::base::PlannerStatus returnBestCollected();
   std::uint64_t nextStreamSeed();
   /// Adds a root motion at the start state to an empty tree.
   void plantRoot();
@@ -182,14 +186,7 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t verifications_ = 0;           ///< plans executed in sampled worlds (verifyRuns)
   std::uint64_t verificationRejections_ = 0;  ///< of those, the ones that did not pass
   std::uint64_t verificationRuns_ = 0;        ///< sampled executions those and the estimates ran
-  /// A plan that passed verification, kept until the search has `plans` of them.
-  struct VerifiedPlan {
-    Motion* end = nullptr;
-    unsigned runs = 0;       ///< its verification and estimate runs
-    unsigned successes = 0;  ///< of those, the ones that succeeded
-  };
-  std::vector<VerifiedPlan> verified_;
-  VerificationResult lastVerification_;   ///< what the last passing plan's runs found, in all
+  std::vector<VerifiedPlan> verified_;        ///< the plans that passed, in the order found
   bool steerNext_ = false;                ///< the motion being expanded was chosen by the goal bias
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to
