@@ -161,9 +161,9 @@ void printControls(const core::RobotInstance& robot) {
 void printSettings(const core::Problem& problem) {
   const core::PhysicsSettings& p = problem.physics;
   fmt::print(
-      "physics     step {:g} s, {} solver iterations, mu {:g}, ERP {:g}, CFM {:g}, {} contacts "
-      "per pair\n",
-      p.stepSize, p.solverIterations, p.friction, p.erp, p.cfm, p.maxContacts);
+      "physics     step {:g} s, {} solver iterations (over-relaxation {:g}), mu {:g}, ERP {:g}, "
+      "CFM {:g}, {} contacts per pair\n",
+      p.stepSize, p.solverIterations, p.overRelaxation, p.friction, p.erp, p.cfm, p.maxContacts);
   const core::InteractionConstraints& c = problem.interaction;
   const auto support = problem.supportObject();
   fmt::print(

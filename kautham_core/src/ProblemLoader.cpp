@@ -412,14 +412,16 @@ class ProblemReader {
   }
 
   void readPhysics(const XMLElement& e) {
-    xml_.allowAttributes(e, {"stepSize", "gravity", "maxContacts", "solverIterations", "friction",
-                             "erp", "cfm", "sleep", "sleepSpeed", "sleepSteps"});
+    xml_.allowAttributes(
+        e, {"stepSize", "gravity", "maxContacts", "solverIterations", "overRelaxation", "friction",
+            "erp", "cfm", "sleep", "sleepSpeed", "sleepSteps"});
     PhysicsSettings& p = problem_.physics;
     p.where = xml_.at(e);
     p.stepSize = positive(e, "stepSize", p.stepSize);
     p.gravity = xml_.vector3(e, "gravity", p.gravity);
     p.maxContacts = xml_.integer(e, "maxContacts", p.maxContacts);
     p.solverIterations = xml_.integer(e, "solverIterations", p.solverIterations);
+    p.overRelaxation = xml_.number(e, "overRelaxation", p.overRelaxation);
     p.friction = nonNegative(e, "friction", p.friction);
     p.erp = nonNegative(e, "erp", p.erp);
     p.cfm = nonNegative(e, "cfm", p.cfm);
@@ -431,6 +433,9 @@ class ProblemReader {
     if (p.maxContacts < 1 || p.maxContacts > 64) xml_.fail(e, "maxContacts must be in [1, 64]");
     if (p.solverIterations < 1 || p.solverIterations > 1000)
       xml_.fail(e, "solverIterations must be in [1, 1000]");
+    // Gauss-Seidel with over-relaxation converges only for factors strictly between 0 and 2.
+    if (!(p.overRelaxation > 0.0 && p.overRelaxation < 2.0))
+      xml_.fail(e, "overRelaxation must be above 0 and below 2 (ODE's default is 1.3)");
     if (p.erp > 1.0) xml_.fail(e, "erp must be in [0, 1]");
   }
 

@@ -159,6 +159,7 @@ class World::Builder {
     world_.world_ = dWorldCreate();
     dWorldSetGravity(world_.world_, s.gravity.x(), s.gravity.y(), s.gravity.z());
     dWorldSetQuickStepNumIterations(world_.world_, s.solverIterations);
+    dWorldSetQuickStepW(world_.world_, s.overRelaxation);
     // Only objects sleep (makeSleeper), and only in a way the state records (World::writeState).
     dWorldSetAutoDisableFlag(world_.world_, 0);
     // A thin allowed penetration keeps resting contacts from flickering on and off.

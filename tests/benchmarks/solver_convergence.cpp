@@ -6,7 +6,8 @@
 // the gap is the solver's error over one step, where the arm pushes and where it moves free.
 //
 //   solver_convergence --problem problems/kuka_clutter_20.xml --plan plan.json
-//                      --iterations 20,40,100 --reference 1000 --json out.json
+//                      --iterations 20,40,100 --over-relaxation 1.3,1.7 --reference 1000
+//                      --json out.json
 
 #include <algorithm>
 #include <cmath>
@@ -107,18 +108,24 @@ double mean(const std::vector<double>& values) {
 
 struct Row {
   int iterations = 0;
+  double overRelaxation = 0.0;
   std::vector<double> robot, objects, tilts;
 };
 
+/// The reference is the same for every row (ODE's default over-relaxation, `reference`
+/// iterations), so rows with other over-relaxation factors are measured against one answer.
 Row measure(const Problem& base, const std::vector<PlanControl>& controls, int iterations,
-            int reference) {
+            double overRelaxation, int reference) {
   Problem problem = base;
   problem.physics.solverIterations = iterations;
+  problem.physics.overRelaxation = overRelaxation;
   PlanningContext context(problem, 0, {});
   problem.physics.solverIterations = reference;
+  problem.physics.overRelaxation = 1.3;
   PlanningContext converged(problem, 0, {});
   Row row;
   row.iterations = iterations;
+  row.overRelaxation = overRelaxation;
   std::vector<double> state = context.startState();
   for (const PlanControl& control : controls) {
     for (unsigned s = 0; s < control.steps; ++s) {
@@ -142,10 +149,14 @@ int main(int argc, char** argv) {
       "one with the reference count, from every state of the plan's nominal run"};
   std::string problemFile, planFile, jsonFile;
   std::vector<int> iterations{10, 20, 40, 60, 100};
+  std::vector<double> overRelaxations;
   int reference = 1000;
   app.add_option("--problem", problemFile, "problem file")->required();
   app.add_option("--plan", planFile, "plan file (from kautham plan -o)")->required();
   app.add_option("--iterations", iterations, "QuickStep iterations to measure")->delimiter(',');
+  app.add_option("--over-relaxation", overRelaxations,
+                 "QuickStep over-relaxation factors to measure (default: the file's)")
+      ->delimiter(',');
   app.add_option("--reference", reference, "iterations taken as converged");
   app.add_option("--json", jsonFile, "write the numbers here too");
   CLI11_PARSE(app, argc, argv);
@@ -153,29 +164,34 @@ int main(int argc, char** argv) {
     const Problem problem = kautham::core::loadProblem(problemFile);
     const std::vector<PlanControl> controls = readControls(planFile);
     nlohmann::json out = {{"problem", problemFile}, {"plan", planFile}, {"reference", reference}};
-    std::cout << "one propagation step's gap to " << reference
-              << " iterations (robot and objects: largest body position gap, mm; tilt: mrad)\n"
-              << "iterations  robot mean  p95   max   objects mean  p95   max   tilt p95   max\n";
-    for (int n : iterations) {
-      const Row row = measure(problem, controls, n, reference);
-      std::cout << std::fixed << std::setprecision(2) << std::setw(10) << n << std::setw(12)
-                << 1e3 * mean(row.robot) << std::setw(6) << 1e3 * quantile(row.robot, 0.95)
-                << std::setw(7) << 1e3 * quantile(row.robot, 1.0) << std::setw(14)
-                << 1e3 * mean(row.objects) << std::setw(6) << 1e3 * quantile(row.objects, 0.95)
-                << std::setw(7) << 1e3 * quantile(row.objects, 1.0) << std::setw(10)
-                << 1e3 * quantile(row.tilts, 0.95) << std::setw(7) << 1e3 * quantile(row.tilts, 1.0)
-                << "\n";
-      out["rows"].push_back({{"iterations", n},
-                             {"steps", row.robot.size()},
-                             {"robot_mean_m", mean(row.robot)},
-                             {"robot_p95_m", quantile(row.robot, 0.95)},
-                             {"robot_max_m", quantile(row.robot, 1.0)},
-                             {"objects_mean_m", mean(row.objects)},
-                             {"objects_p95_m", quantile(row.objects, 0.95)},
-                             {"objects_max_m", quantile(row.objects, 1.0)},
-                             {"tilt_p95_rad", quantile(row.tilts, 0.95)},
-                             {"tilt_max_rad", quantile(row.tilts, 1.0)}});
-    }
+    std::cout
+        << "one propagation step's gap to " << reference
+        << " iterations (robot and objects: largest body position gap, mm; tilt: mrad)\n"
+        << "  W  iterations  robot mean  p95   max   objects mean  p95   max   tilt p95   max\n";
+    if (overRelaxations.empty()) overRelaxations.push_back(problem.physics.overRelaxation);
+    for (double w : overRelaxations)
+      for (int n : iterations) {
+        const Row row = measure(problem, controls, n, w, reference);
+        std::cout << std::fixed << std::setprecision(2) << std::setw(4) << w << std::setw(11) << n
+                  << std::setw(12) << 1e3 * mean(row.robot) << std::setw(6)
+                  << 1e3 * quantile(row.robot, 0.95) << std::setw(7)
+                  << 1e3 * quantile(row.robot, 1.0) << std::setw(14) << 1e3 * mean(row.objects)
+                  << std::setw(6) << 1e3 * quantile(row.objects, 0.95) << std::setw(7)
+                  << 1e3 * quantile(row.objects, 1.0) << std::setw(10)
+                  << 1e3 * quantile(row.tilts, 0.95) << std::setw(7)
+                  << 1e3 * quantile(row.tilts, 1.0) << "\n";
+        out["rows"].push_back({{"iterations", n},
+                               {"over_relaxation", w},
+                               {"steps", row.robot.size()},
+                               {"robot_mean_m", mean(row.robot)},
+                               {"robot_p95_m", quantile(row.robot, 0.95)},
+                               {"robot_max_m", quantile(row.robot, 1.0)},
+                               {"objects_mean_m", mean(row.objects)},
+                               {"objects_p95_m", quantile(row.objects, 0.95)},
+                               {"objects_max_m", quantile(row.objects, 1.0)},
+                               {"tilt_p95_rad", quantile(row.tilts, 0.95)},
+                               {"tilt_max_rad", quantile(row.tilts, 1.0)}});
+      }
     if (!jsonFile.empty()) std::ofstream(jsonFile) << out.dump(2) << "\n";
   } catch (const std::exception& e) {
     std::cerr << "solver_convergence: " << e.what() << "\n";

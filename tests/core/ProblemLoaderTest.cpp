@@ -223,6 +223,7 @@ TEST_F(PusherCans5, Physics) {
   EXPECT_TRUE(physics.gravity.isApprox(Eigen::Vector3d(0, 0, -9.81)));
   EXPECT_EQ(physics.maxContacts, 8);
   EXPECT_EQ(physics.solverIterations, 20);
+  EXPECT_DOUBLE_EQ(physics.overRelaxation, 1.3);
   EXPECT_DOUBLE_EQ(physics.friction, 0.5);
   EXPECT_DOUBLE_EQ(physics.erp, 0.2);
   EXPECT_DOUBLE_EQ(physics.cfm, 1e-5);
@@ -358,7 +359,8 @@ TEST_F(ProblemVariant, ValuesOtherThanTheDefaultsAreRead) {
   std::string text = textOfCans5();
   text = replaceElement(text, "<Physics ",
                         R"(<Physics stepSize="0.005" gravity="0 0 -1.62" maxContacts="6" )"
-                        R"(solverIterations="50" friction="0.9" erp="0.5" cfm="1e-3"/>)");
+                        R"(solverIterations="50" overRelaxation="1.6" friction="0.9" erp="0.5" )"
+                        R"(cfm="1e-3"/>)");
   text = replaceElement(text, "<Interaction ",
                         R"(<Interaction support="table" maxObjectSpeed="0.5" )"
                         R"(maxDisplacement="0.1" maxTilt="0.2" targetTolerance="0.01"/>)");
@@ -370,6 +372,7 @@ TEST_F(ProblemVariant, ValuesOtherThanTheDefaultsAreRead) {
   EXPECT_TRUE(problem.physics.gravity.isApprox(Eigen::Vector3d(0, 0, -1.62)));
   EXPECT_EQ(problem.physics.maxContacts, 6);
   EXPECT_EQ(problem.physics.solverIterations, 50);
+  EXPECT_DOUBLE_EQ(problem.physics.overRelaxation, 1.6);
   EXPECT_DOUBLE_EQ(problem.physics.friction, 0.9);
   EXPECT_DOUBLE_EQ(problem.physics.erp, 0.5);
   EXPECT_DOUBLE_EQ(problem.physics.cfm, 1e-3);
@@ -487,6 +490,8 @@ const MalformedCase kMalformedCases[] = {
     {"home_twice", nullptr, 14, "<Home> appears twice inside <Obstacle> (first on line 13)"},
     {"physics_not_a_number", nullptr, 15, "friction: expected a number, got 'high'"},
     {"physics_out_of_range", nullptr, 15, "maxContacts must be in [1, 64]"},
+    {"physics_over_relaxation_out_of_range", nullptr, 15,
+     "overRelaxation must be above 0 and below 2"},
     {"physics_sleep_not_a_flag", nullptr, 15,
      "attribute sleep must be true or false, got 'sometimes'"},
     {"kautham_max_contacts_out_of_range", nullptr, 21,
