@@ -69,13 +69,17 @@ std::string obstacleXml(const std::string& urdf, const std::string& role, const 
       urdf, role, name, x, y, z);
 }
 
-std::string tablePhysicsXml(int solverIterations, const std::string& iterationsComment) {
-  return iterationsComment +
+std::string tablePhysicsXml(const SolverSettings& solver) {
+  const std::string overRelaxation =
+      solver.overRelaxation == SolverSettings{}.overRelaxation
+          ? std::string()
+          : fmt::format("overRelaxation=\"{:g}\" ", solver.overRelaxation);
+  return solver.comment +
          fmt::format(
              "  <Physics stepSize=\"0.01\" gravity=\"0 0 -9.81\" maxContacts=\"8\" "
-             "solverIterations=\"{}\"\n",
-             solverIterations) +
-         "           friction=\"0.5\" erp=\"0.2\" cfm=\"1e-5\"/>\n"
+             "solverIterations=\"{}\"\n"
+             "           {}friction=\"0.5\" erp=\"0.2\" cfm=\"1e-5\"/>\n",
+             solver.iterations, overRelaxation) +
          "  <!-- what is known only roughly: object poses to 5 mm and 0.05 rad, friction to 0.05,\n"
          "       joint speeds to 0.2 % of their limits (p-KPIECE plans for it; validate samples "
          "it;\n"

@@ -44,9 +44,15 @@ std::string escapeComment(const std::string& text);
 std::string obstacleXml(const std::string& urdf, const std::string& role, const std::string& name,
                         const std::string& x, const std::string& y, const std::string& z);
 
+/// How a generated scene asks ODE's QuickStep to solve its steps.
+struct SolverSettings {
+  int iterations = 20;
+  double overRelaxation = 1.3;  ///< ODE's default; written only when another is asked for
+  std::string comment;          ///< whole lines before the <Physics> element: why these
+};
+
 /// The <Physics>, <Uncertainty> and <Interaction> elements every generated table scene
-/// shares (a commented block of the file), with `solverIterations` QuickStep iterations and,
-/// before the <Physics> element, `iterationsComment` (whole lines: why that many).
-std::string tablePhysicsXml(int solverIterations = 20, const std::string& iterationsComment = "");
+/// shares (a commented block of the file), with the solver settings `solver`.
+std::string tablePhysicsXml(const SolverSettings& solver = {});
 
 }  // namespace kautham::apps::placement
