@@ -285,6 +285,25 @@ TEST_F(GenerateCommandTest, SideScenesAreReproducibleAndBlockTheApproach) {
     }
 }
 
+/// Each arm's dense scenes ask QuickStep for what its pushes were measured to need
+/// (docs/physics.md, "Over-relaxation"): the KUKA's 40 plain iterations, the YuMi's 20
+/// over-relaxed at 1.7; the top-down scenes keep ODE's defaults at 20.
+TEST_F(GenerateCommandTest, EachArmsSceneAsksForItsSolverSettings) {
+  struct Expected {
+    const char* arguments;
+    int iterations;
+    double overRelaxation;
+  };
+  for (const Expected& e : {Expected{"-r kuka -n 5", 40, 1.3}, Expected{"-r yumi -n 5", 20, 1.7},
+                            Expected{"-r kuka -n 5 --layout top", 20, 1.3}}) {
+    const fs::path file = folder / "solver.xml";
+    ASSERT_EQ(generate(std::string(e.arguments) + " --force -o " + file.string()).exitCode, 0);
+    const core::Problem problem = load(file);
+    EXPECT_EQ(problem.physics.solverIterations, e.iterations) << e.arguments;
+    EXPECT_DOUBLE_EQ(problem.physics.overRelaxation, e.overRelaxation) << e.arguments;
+  }
+}
+
 /// `generate` and `check` count the same blockers, boxes (whose circumscribed circle is wider
 /// than their footprint) included.
 TEST_F(GenerateCommandTest, GenerateAndCheckCountTheSameBlockers) {
