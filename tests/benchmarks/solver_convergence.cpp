@@ -108,7 +108,6 @@ double mean(const std::vector<double>& values) {
 
 struct Row {
   int iterations = 0;
-  double overRelaxation = 0.0;
   std::vector<double> robot, objects, tilts;
 };
 
@@ -125,7 +124,6 @@ Row measure(const Problem& base, const std::vector<PlanControl>& controls, int i
   PlanningContext converged(problem, 0, {});
   Row row;
   row.iterations = iterations;
-  row.overRelaxation = overRelaxation;
   std::vector<double> state = context.startState();
   for (const PlanControl& control : controls) {
     for (unsigned s = 0; s < control.steps; ++s) {
