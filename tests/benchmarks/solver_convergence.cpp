@@ -120,7 +120,7 @@ Row measure(const Problem& base, const std::vector<PlanControl>& controls, int i
   problem.physics.overRelaxation = overRelaxation;
   PlanningContext context(problem, 0, {});
   problem.physics.solverIterations = reference;
-  problem.physics.overRelaxation = 1.3;
+  problem.physics.overRelaxation = kautham::core::PhysicsSettings{}.overRelaxation;
   PlanningContext converged(problem, 0, {});
   Row row;
   row.iterations = iterations;
