@@ -133,7 +133,7 @@ std::vector<BenchConfig> configsInOrder(const CLI::App& command, const BenchOpti
   for (const CLI::Option* option : command.parse_order()) {
     if (option->check_lname("planner")) {
       const std::string& name = options.planners.at(planner++);
-      configs.push_back({name, name, {}});
+      configs.push_back({name, name, {}, {}});
     } else if (option->check_lname("config")) {
       configs.push_back(parseConfig(options.configs.at(config++)));
     }

@@ -6,6 +6,7 @@
 
 #include "ParameterOverrides.h"
 #include "StartCheck.h"
+#include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/PlanRequest.h"
 
@@ -13,14 +14,15 @@ namespace kautham::apps {
 
 namespace {
 
-double checkConfig(const BenchSpec& spec, const core::Problem& problem, const BenchConfig& config) {
+double checkConfig(const BenchSpec& spec, core::Problem problem, const BenchConfig& config) {
   try {
+    core::applyPhysicsOverrides(problem.physics, config.physics);
     const planners::PlanRequest request =
         planners::makeRequest(problem, config.planner,
                               parameterOverrides(config.sets, spec.time, spec.threads), spec.seed);
     makeCheckedContext(problem, 0, request);  // builds the world and checks the start state
     return request.timeLimit();
-  } catch (const std::invalid_argument& e) {  // the command line's part: planner, --set
+  } catch (const std::invalid_argument& e) {  // the command line's part: planner, --set, physics
     throw std::invalid_argument(fmt::format("{}, configuration {} (planner {}): {}",
                                             problem.file.string(), config.name, config.planner,
                                             e.what()));

@@ -36,13 +36,16 @@ json plannerParameters(const RunEvidence& evidence) {
 
 json runSetup(const BenchSpec& spec, const RunKey& key, double timeLimit) {
   const BenchConfig& config = spec.configs[key.config];
-  return {{"problem_file", spec.problems[key.problem].string()},
-          {"planner", config.planner},
-          {"set", config.sets},
-          {"seed", spec.seed + key.run},
-          {"time_limit", timeLimit},
-          {"threads", spec.threads ? json(*spec.threads) : json(nullptr)},
-          {"validate_runs", spec.validate}};
+  json setup = {{"problem_file", spec.problems[key.problem].string()},
+                {"planner", config.planner},
+                {"set", config.sets},
+                {"seed", spec.seed + key.run},
+                {"time_limit", timeLimit},
+                {"threads", spec.threads ? json(*spec.threads) : json(nullptr)},
+                {"validate_runs", spec.validate}};
+  // Only when given: the results of earlier campaigns, without the key, still resume.
+  if (!config.physics.empty()) setup["physics"] = config.physics;
+  return setup;
 }
 
 json makeRunResult(const BenchSpec& spec, const RunKey& key, const json& setup,

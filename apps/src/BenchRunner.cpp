@@ -159,6 +159,8 @@ class BenchRunner {
     if (spec_.time) command.insert(command.end(), {"--time", fmt::format("{}", *spec_.time)});
     if (spec_.threads) command.insert(command.end(), {"--threads", std::to_string(*spec_.threads)});
     for (const std::string& set : config(key).sets) command.insert(command.end(), {"--set", set});
+    for (const std::string& physics : config(key).physics)
+      command.insert(command.end(), {"--physics", physics});
     for (const std::string& dir : spec_.modelDirs)
       command.insert(command.end(), {"--model-dir", dir});
     command.insert(command.end(), {"-o", planFile(key).string()});

@@ -73,19 +73,27 @@ class BenchFileReader {
       if (!c.is_object() || !c.contains("planner"))
         fail("configs", "each configuration needs at least a \"planner\"");
       for (const auto& [key, value] : c.items())
-        if (key != "name" && key != "planner" && key != "set")
-          fail(key, "unknown key \"" + key + "\" in a configuration; known: name, planner, set");
+        if (key != "name" && key != "planner" && key != "set" && key != "physics")
+          fail(key, "unknown key \"" + key +
+                        "\" in a configuration; known: name, planner, set, physics");
       BenchConfig config;
       config.planner = text(c["planner"], "planner");
       config.name = c.contains("name") ? text(c["name"], "name") : config.planner;
-      if (c.contains("set")) {
-        if (!c["set"].is_object()) fail("set", "\"set\" must map parameter names to values");
-        for (const auto& [name, value] : c["set"].items())
-          config.sets.push_back(name + "=" +
-                                (value.is_string() ? value.get<std::string>() : value.dump()));
-      }
+      config.sets = assignments(c, "set", "parameter names");
+      config.physics = assignments(c, "physics", "<Physics> attributes");
       result.push_back(std::move(config));
     }
+    return result;
+  }
+
+  /// A configuration's "set" or "physics": an object of names to values, as NAME=VALUE.
+  std::vector<std::string> assignments(const json& config, const std::string& key,
+                                       const std::string& names) {
+    std::vector<std::string> result;
+    if (!config.contains(key)) return result;
+    if (!config[key].is_object()) fail(key, "\"" + key + "\" must map " + names + " to values");
+    for (const auto& [name, value] : config[key].items())
+      result.push_back(name + "=" + (value.is_string() ? value.get<std::string>() : value.dump()));
     return result;
   }
 

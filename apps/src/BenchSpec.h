@@ -17,6 +17,9 @@ struct BenchConfig {
   std::string name;
   std::string planner;
   std::vector<std::string> sets;  ///< NAME=VALUE, applied in order after the problem's own
+  /// NAME=VALUE attributes of the problems' <Physics> (`kautham plan --physics`): another
+  /// solver setting measured without copies of the files.
+  std::vector<std::string> physics;
 };
 
 struct BenchSpec {

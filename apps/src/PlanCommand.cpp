@@ -20,6 +20,7 @@
 #include "PlanFile.h"
 #include "PlanViewer.h"
 #include "StartCheck.h"
+#include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace kautham::apps {
@@ -35,6 +36,7 @@ struct PlanOptions {
   std::optional<unsigned> threads;
   std::uint32_t seed = 1;
   std::vector<std::string> sets;
+  std::vector<std::string> physics;  ///< --physics NAME=VALUE: <Physics> attributes set
   std::string output;
   std::string html;
   std::string threeDir;
@@ -145,7 +147,11 @@ int runPlan(const PlanOptions& options) {
       options.html.empty() ? std::filesystem::path() : findThreeDir(options.threeDir);
   applyPackagePaths(options.packagePaths);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
-  const core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  core::applyPhysicsOverrides(problem.physics, options.physics);
+  if (!options.physics.empty())
+    fmt::print("physics   {} (--physics, over the file's <Physics>)\n",
+               fmt::join(options.physics, " "));
   if (options.query >= problem.queries.size())
     throw std::invalid_argument(fmt::format("--query {}: the problem has {} queries", options.query,
                                             problem.queries.size()));
@@ -165,7 +171,9 @@ int runPlan(const PlanOptions& options) {
   const physics::ReplayResult replay = physics::replay(context, outcome.controls);
   printSummary(context, request, outcome, replay);
   if (!options.output.empty() || !options.html.empty()) {
-    const nlohmann::json plan = planToJson(context, request, outcome, replay);
+    nlohmann::json plan = planToJson(context, request, outcome, replay);
+    // validate reads them back, so that it executes the plan in the physics it was made in.
+    if (!options.physics.empty()) plan["problem"]["physics"] = options.physics;
     if (!options.output.empty()) {
       writeJsonFile(options.output, plan);
       fmt::print("wrote     {}\n", options.output);
@@ -202,6 +210,11 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   command
       ->add_option("--set", options->sets,
                    "set a planner parameter, NAME=VALUE (repeatable; see `kautham planners`)")
+      ->allow_extra_args(false);
+  command
+      ->add_option("--physics", options->physics,
+                   "set an attribute of the problem's <Physics>, NAME=VALUE (repeatable; e.g. "
+                   "overRelaxation=1.7; recorded in the plan file, which validate follows)")
       ->allow_extra_args(false);
   command->add_option("-o,--output", options->output, "write the plan to this JSON file");
   command->add_option("--html", options->html,

@@ -19,6 +19,7 @@
 #include "JsonFileText.h"
 #include "PackagePathOption.h"
 #include "PlanFile.h"
+#include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/core/Random.h"
 #include "kautham/physics/Execution.h"
@@ -44,6 +45,9 @@ struct ValidateOptions {
   std::vector<std::string> packagePaths;
   /// The sources of uncertainty sampled (poses, contact, control); empty: all of them.
   std::vector<std::string> only;
+  /// --physics NAME=VALUE: <Physics> attributes set after the plan's own (the plan in other
+  /// physics than it was made in).
+  std::vector<std::string> physics;
 };
 
 /// The problem's uncertainty less the sources `only` leaves out (none when it is empty): how
@@ -66,6 +70,8 @@ void keepOnly(core::Problem& problem, const std::vector<std::string>& only) {
 /// What validate needs of a plan file (PlanFile.cpp's format).
 struct PlanControls {
   std::string query;  ///< the query's name; empty: the first query
+  /// The <Physics> attributes `kautham plan --physics` set (NAME=VALUE), to be set again.
+  std::vector<std::string> physics;
   double propagationStepSize = 0.0;
   std::vector<physics::ControlStep> controls;
 };
@@ -90,6 +96,15 @@ class PlanReader {
         plan["problem"].contains("query")) {
       if (!plan["problem"]["query"].is_string()) fail("query", "\"query\" must be a string");
       result.query = plan["problem"]["query"].get<std::string>();
+    }
+    if (plan.contains("problem") && plan["problem"].is_object() &&
+        plan["problem"].contains("physics")) {
+      const json& physics = plan["problem"]["physics"];
+      if (!physics.is_array()) fail("physics", "\"physics\" must be an array of \"NAME=VALUE\"");
+      for (const json& assignment : physics) {
+        if (!assignment.is_string()) fail("physics", "\"physics\" must hold strings NAME=VALUE");
+        result.physics.push_back(assignment.get<std::string>());
+      }
     }
     const json step = plan.value("propagation_step_size", json());
     if (!step.is_number() || !(step.get<double>() > 0.0))
@@ -278,6 +293,17 @@ std::string describeUncertainty(const core::Problem& problem,
       uncertain, largest.x, largest.y, largest.yaw, u.friction, u.erp, u.cfm, u.control);
 }
 
+/// "overRelaxation=1.7 (the plan's), then friction=0.3 (--physics)".
+std::string describePhysicsOverrides(const std::vector<std::string>& fromPlan,
+                                     const std::vector<std::string>& fromCommandLine) {
+  std::string text;
+  if (!fromPlan.empty()) text = fmt::format("{} (the plan's)", fmt::join(fromPlan, " "));
+  if (!fromPlan.empty() && !fromCommandLine.empty()) text += ", then ";
+  if (!fromCommandLine.empty())
+    text += fmt::format("{} (--physics)", fmt::join(fromCommandLine, " "));
+  return text;
+}
+
 int runValidate(const ValidateOptions& options) {
   applyPackagePaths(options.packagePaths);
   std::vector<fs::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
@@ -285,6 +311,12 @@ int runValidate(const ValidateOptions& options) {
   keepOnly(problem, options.only);
   PlanReader reader(options.plan);
   const PlanControls plan = reader.read();
+  try {
+    core::applyPhysicsOverrides(problem.physics, plan.physics);
+  } catch (const std::invalid_argument& e) {
+    reader.fail("physics", std::string(e.what()) + " (the plan's \"physics\")");
+  }
+  core::applyPhysicsOverrides(problem.physics, options.physics);
   const std::size_t query = findQuery(problem, plan.query, reader);
 
   physics::PropagationSettings settings;
@@ -360,6 +392,9 @@ int runValidate(const ValidateOptions& options) {
              plan.controls.size(), motion);
   fmt::print("uncertainty  {}{}\n", describeUncertainty(problem, sampler),
              options.only.empty() ? "" : fmt::format(" (only {})", fmt::join(options.only, ", ")));
+  if (!plan.physics.empty() || !options.physics.empty())
+    fmt::print("physics      {} (over the file's <Physics>)\n",
+               describePhysicsOverrides(plan.physics, options.physics));
   fmt::print("runs         {} (seed {})\n", options.runs, options.seed);
   fmt::print("success      {}/{} = {:.1f} %, 95 % Wilson interval [{:.1f} %, {:.1f} %]\n",
              successes, options.runs, 100.0 * rate, 100.0 * ci.low, 100.0 * ci.high);
@@ -392,6 +427,7 @@ int runValidate(const ValidateOptions& options) {
         {"runs", options.runs},
         {"seed", options.seed},
         {"sources", options.only.empty() ? json(kSources) : json(options.only)},
+        {"physics", {{"plan", plan.physics}, {"command_line", options.physics}}},
         {"successes", successes},
         {"success_rate", rate},
         {"confidence_interval",
@@ -425,6 +461,11 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
   command->add_option("--seed", options->seed, "random seed; run i draws from its own stream")
       ->capture_default_str();
   command->add_option("--json", options->json, "write the numbers to this JSON file");
+  command
+      ->add_option("--physics", options->physics,
+                   "set an attribute of the problem's <Physics>, NAME=VALUE, after those the "
+                   "plan file records (repeatable): the plan executed in other physics")
+      ->allow_extra_args(false);
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
       ->allow_extra_args(false);
   command

@@ -16,6 +16,7 @@
 #include "XmlReader.h"
 #include "kautham/core/Log.h"
 #include "kautham/core/OctomapEnvironment.h"
+#include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/SoftContact.h"
 #include "kautham/core/UrdfLoader.h"
 
@@ -428,15 +429,8 @@ class ProblemReader {
     p.sleep = xml_.flag(e, "sleep", p.sleep);
     p.sleepSpeed = positive(e, "sleepSpeed", p.sleepSpeed);
     p.sleepSteps = xml_.integer(e, "sleepSteps", p.sleepSteps);
-    if (p.sleepSteps < 1) xml_.fail(e, "sleepSteps must be at least 1");
-    if (p.stepSize > 0.1) xml_.fail(e, "stepSize must be at most 0.1 s for a stable simulation");
-    if (p.maxContacts < 1 || p.maxContacts > 64) xml_.fail(e, "maxContacts must be in [1, 64]");
-    if (p.solverIterations < 1 || p.solverIterations > 1000)
-      xml_.fail(e, "solverIterations must be in [1, 1000]");
-    // Gauss-Seidel with over-relaxation converges only for factors strictly between 0 and 2.
-    if (!(p.overRelaxation > 0.0 && p.overRelaxation < 2.0))
-      xml_.fail(e, "overRelaxation must be above 0 and below 2 (ODE's default is 1.3)");
-    if (p.erp > 1.0) xml_.fail(e, "erp must be in [0, 1]");
+    // The rules --physics overrides are held to as well.
+    if (const std::optional<std::string> error = physicsSettingsError(p)) xml_.fail(e, *error);
   }
 
   void readInteraction(const XMLElement& e) {

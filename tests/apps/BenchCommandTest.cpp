@@ -235,6 +235,41 @@ TEST_F(BenchCommandTest, PKpiecesRestartsAreARunProperty) {
   EXPECT_EQ(result["properties"]["restarts INTEGER"], restarts);
 }
 
+TEST_F(BenchCommandTest, AConfigurationsPhysicsReachesItsPlansAndTheirValidation) {
+  const fs::path file = folder / "physics.json";
+  const std::string problem = (fs::path(KAUTHAM_SOURCE_DIR) / "problems/pusher_free.xml").string();
+  const auto spec = [&](const std::string& friction) {
+    return "{\"problems\": [\"" + problem +
+           "\"],\n \"configs\": [{\"name\": \"slippery\", \"planner\": \"KPIECE\",\n"
+           "   \"physics\": {\"friction\": \"" +
+           friction +
+           "\", \"solverIterations\": 10}}],\n \"runs\": 1, \"time\": 5, "
+           "\"validate\": 1}\n";
+  };
+  test::writeFile(file, spec("-1"));
+  const CommandRun refused = kautham("bench --file '" + file.string() + "' " + out());
+  EXPECT_EQ(refused.exitCode, 2) << refused.output;
+  EXPECT_NE(refused.output.find("configuration slippery (planner KPIECE): --physics friction=-1: "
+                                "attribute friction must be non-negative"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_FALSE(fs::exists(folder / "out")) << "nothing may run";
+
+  test::writeFile(file, spec("0.2"));
+  const CommandRun run = kautham("bench --file '" + file.string() + "' " + out());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const json result = readJson(folder / "out/runs/pusher_free/slippery/run-0.json");
+  const json physics = json::array({"friction=0.2", "solverIterations=10"});
+  EXPECT_EQ(result["setup"]["physics"], physics);
+  const json plan = readJson(folder / "out" / result["plan"]["file"].get<std::string>());
+  EXPECT_EQ(plan["problem"]["physics"], physics);
+  const std::string validation =
+      test::readFile(folder / "out/console/pusher_free/slippery/run-0.txt");
+  EXPECT_NE(validation.find("physics      friction=0.2 solverIterations=10 (the plan's)"),
+            std::string::npos)
+      << validation;
+}
+
 TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
   const CommandRun missing =
       kautham("bench problems/no_such_problem.xml --planner KPIECE " + out());

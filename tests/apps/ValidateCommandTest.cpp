@@ -207,6 +207,57 @@ TEST_F(ValidateCommandTest, MalformedPlanFilesExitTwoNamingFileAndLine) {
       << size.output;
 }
 
+TEST_F(ValidateCommandTest, APlanMadeInOtherPhysicsIsExecutedInThem) {
+  // pusher_cans_5 has no uncertainty: each execution is the planner's own nominal run, so it
+  // ends exactly where the plan's replay did, if validate uses the physics the plan was made in.
+  const fs::path other = folder / "other_physics.json";
+  const CommandRun planned = kautham(
+      "plan problems/pusher_cans_5.xml --seed 1 --physics friction=0.2 --physics "
+      "solverIterations=5 -o " +
+      quoted(other));
+  ASSERT_EQ(planned.exitCode, 0) << planned.output;
+  EXPECT_NE(planned.output.find("physics   friction=0.2 solverIterations=5 (--physics"),
+            std::string::npos)
+      << planned.output;
+  const nlohmann::json plan = readJson(other);
+  EXPECT_EQ(plan["problem"]["physics"],
+            nlohmann::json::array({"friction=0.2", "solverIterations=5"}));
+  const double replayed = plan["result"]["replay"]["final_goal_distance"];
+
+  const fs::path json = folder / "validation.json";
+  const CommandRun same = kautham("validate problems/pusher_cans_5.xml " + quoted(other) +
+                                  " --runs 1 --json " + quoted(json));
+  ASSERT_EQ(same.exitCode, 0) << same.output;
+  EXPECT_NE(same.output.find("physics      friction=0.2 solverIterations=5 (the plan's)"),
+            std::string::npos)
+      << same.output;
+  EXPECT_DOUBLE_EQ(readJson(json)["results"][0]["final_goal_distance"].get<double>(), replayed);
+
+  // --physics on validate comes after the plan's: here the file's own values again, another
+  // motion of the cans.
+  const CommandRun file = kautham("validate problems/pusher_cans_5.xml " + quoted(other) +
+                                  " --runs 1 --physics friction=0.5 --physics "
+                                  "solverIterations=20 --json " +
+                                  quoted(json));
+  ASSERT_EQ(file.exitCode, 0) << file.output;
+  const nlohmann::json report = readJson(json);
+  EXPECT_NE(report["results"][0]["final_goal_distance"].get<double>(), replayed);
+  EXPECT_EQ(report["physics"]["command_line"],
+            nlohmann::json::array({"friction=0.5", "solverIterations=20"}));
+
+  // A plan whose "physics" is not a <Physics> attribute: exit 2, naming the plan and the line.
+  std::string text = test::readFile(other);
+  text.replace(text.find("\"friction=0.2\""), 14, "\"friktion=0.2\"");
+  const fs::path bad = folder / "bad_physics.json";
+  test::writeFile(bad, text);
+  const CommandRun refused =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(bad) + " --runs 1");
+  EXPECT_EQ(refused.exitCode, 2) << refused.output;
+  EXPECT_NE(refused.output.find(bad.string() + ":"), std::string::npos) << refused.output;
+  EXPECT_NE(refused.output.find("--physics friktion=0.2: expected NAME=VALUE"), std::string::npos)
+      << refused.output;
+}
+
 TEST_F(ValidateCommandTest, BadArgumentsExitTwo) {
   EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml no/such/plan.json --runs 2").exitCode, 2);
   EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml " + quoted(plan()) + " --runs 0").exitCode,
