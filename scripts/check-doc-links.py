@@ -6,6 +6,7 @@ Usage: check-doc-links.py [ROOT]   (ROOT: the project's source folder; default: 
 parent folder). Checks ROOT/README.md and ROOT/docs/*.md. Exit 0 when every link resolves, 1
 with one line per broken link (file:line: link: why), 2 on bad usage.
 """
+import functools
 import re
 import sys
 from pathlib import Path
@@ -37,21 +38,20 @@ def lines_outside_fences(path):
             yield number, line
 
 
-def anchors(path, cache={}):
+@functools.lru_cache(maxsize=None)
+def anchors(path):
     """The anchors of a Markdown file's headings; a repeated heading gets -1, -2... as on
     GitHub, and HTML anchors (<a name="..."> or id="...") count too."""
-    if path not in cache:
-        found, seen = set(), {}
-        for _, line in lines_outside_fences(path):
-            match = HEADING.match(line)
-            if match:
-                base = slug(match.group(2))
-                count = seen.get(base, 0)
-                seen[base] = count + 1
-                found.add(base if count == 0 else f"{base}-{count}")
-            found.update(re.findall(r"<a\s+(?:name|id)=\"([^\"]+)\"", line))
-        cache[path] = found
-    return cache[path]
+    found, seen = set(), {}
+    for _, line in lines_outside_fences(path):
+        match = HEADING.match(line)
+        if match:
+            base = slug(match.group(2))
+            count = seen.get(base, 0)
+            seen[base] = count + 1
+            found.add(base if count == 0 else f"{base}-{count}")
+        found.update(re.findall(r"<a\s+(?:name|id)=\"([^\"]+)\"", line))
+    return found
 
 
 def broken_links(page):
@@ -83,8 +83,7 @@ def main(argv):
         for number, target, why in broken_links(page):
             print(f"{page.relative_to(root)}:{number}: ({target}): {why}")
             broken += 1
-    checked = len(pages)
-    print(f"check-doc-links: {checked} pages, {broken} broken link(s)")
+    print(f"check-doc-links: {len(pages)} pages, {broken} broken link(s)")
     return 1 if broken else 0
 
 

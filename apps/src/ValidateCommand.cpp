@@ -92,14 +92,13 @@ class PlanReader {
                        "reads version {}",
                        plan.value("format_version", json()).dump(), kPlanFormatVersion));
     PlanControls result;
-    if (plan.contains("problem") && plan["problem"].is_object() &&
-        plan["problem"].contains("query")) {
-      if (!plan["problem"]["query"].is_string()) fail("query", "\"query\" must be a string");
-      result.query = plan["problem"]["query"].get<std::string>();
+    const json problem = plan.value("problem", json::object());
+    if (problem.is_object() && problem.contains("query")) {
+      if (!problem["query"].is_string()) fail("query", "\"query\" must be a string");
+      result.query = problem["query"].get<std::string>();
     }
-    if (plan.contains("problem") && plan["problem"].is_object() &&
-        plan["problem"].contains("physics")) {
-      const json& physics = plan["problem"]["physics"];
+    if (problem.is_object() && problem.contains("physics")) {
+      const json& physics = problem["physics"];
       if (!physics.is_array()) fail("physics", "\"physics\" must be an array of \"NAME=VALUE\"");
       for (const json& assignment : physics) {
         if (!assignment.is_string()) fail("physics", "\"physics\" must hold strings NAME=VALUE");

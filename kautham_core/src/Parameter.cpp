@@ -108,6 +108,13 @@ std::optional<bool> flagWord(const std::string& text) {
   return std::nullopt;
 }
 
+std::optional<double> numberWord(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
 namespace {
 
 double parseValue(const ParameterSpec& spec, const std::string& text) {
@@ -116,11 +123,11 @@ double parseValue(const ParameterSpec& spec, const std::string& text) {
     throw std::invalid_argument("parameter '" + spec.name + "' expects true or false, got '" +
                                 text + "'");
   }
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || end == text.c_str() || *end != '\0' || !std::isfinite(value))
+  const std::optional<double> number = numberWord(text);
+  if (!number)
     throw std::invalid_argument("parameter '" + spec.name + "' expects a number, got '" + text +
                                 "'");
+  const double value = *number;
   if (spec.type == ParameterType::Integer && value != std::floor(value))
     throw std::invalid_argument("parameter '" + spec.name + "' expects a whole number, got '" +
                                 text + "'");

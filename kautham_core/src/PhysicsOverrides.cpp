@@ -1,12 +1,11 @@
 #include "kautham/core/PhysicsOverrides.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <functional>
 #include <map>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
+#include <variant>
 
 #include "kautham/core/Parameter.h"
 
@@ -14,16 +13,9 @@ namespace kautham::core {
 
 namespace {
 
-/// One number, the whole text, finite.
 double parseNumber(const std::string& text) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(begin, &end);
-  while (end && *end == ' ') ++end;
-  if (end == begin || *end != '\0' || errno == ERANGE || !std::isfinite(value))
-    throw std::invalid_argument("expected a number, got '" + text + "'");
-  return value;
+  if (const std::optional<double> number = numberWord(text)) return *number;
+  throw std::invalid_argument("expected a number, got '" + text + "'");
 }
 
 int parseWholeNumber(const std::string& text) {
@@ -46,34 +38,42 @@ Eigen::Vector3d parseVector(const std::string& text) {
   return {values[0], values[1], values[2]};
 }
 
-using Setter = std::function<void(PhysicsSettings&, const std::string&)>;
+/// A <Physics> attribute: the field it sets; its type says how its text is read.
+using Field = std::variant<double PhysicsSettings::*, int PhysicsSettings::*,
+                           bool PhysicsSettings::*, Eigen::Vector3d PhysicsSettings::*>;
 
-/// The <Physics> attributes, by name, and how each is read.
-const std::map<std::string, Setter>& setters() {
-  static const std::map<std::string, Setter> table{
-      {"stepSize", [](PhysicsSettings& p, const std::string& v) { p.stepSize = parseNumber(v); }},
-      {"gravity", [](PhysicsSettings& p, const std::string& v) { p.gravity = parseVector(v); }},
-      {"maxContacts",
-       [](PhysicsSettings& p, const std::string& v) { p.maxContacts = parseWholeNumber(v); }},
-      {"solverIterations",
-       [](PhysicsSettings& p, const std::string& v) { p.solverIterations = parseWholeNumber(v); }},
-      {"overRelaxation",
-       [](PhysicsSettings& p, const std::string& v) { p.overRelaxation = parseNumber(v); }},
-      {"friction", [](PhysicsSettings& p, const std::string& v) { p.friction = parseNumber(v); }},
-      {"erp", [](PhysicsSettings& p, const std::string& v) { p.erp = parseNumber(v); }},
-      {"cfm", [](PhysicsSettings& p, const std::string& v) { p.cfm = parseNumber(v); }},
-      {"sleep", [](PhysicsSettings& p, const std::string& v) { p.sleep = parseFlag(v); }},
-      {"sleepSpeed",
-       [](PhysicsSettings& p, const std::string& v) { p.sleepSpeed = parseNumber(v); }},
-      {"sleepSteps",
-       [](PhysicsSettings& p, const std::string& v) { p.sleepSteps = parseWholeNumber(v); }},
+const std::map<std::string, Field>& fields() {
+  static const std::map<std::string, Field> table{
+      {"stepSize", &PhysicsSettings::stepSize},
+      {"gravity", &PhysicsSettings::gravity},
+      {"maxContacts", &PhysicsSettings::maxContacts},
+      {"solverIterations", &PhysicsSettings::solverIterations},
+      {"overRelaxation", &PhysicsSettings::overRelaxation},
+      {"friction", &PhysicsSettings::friction},
+      {"erp", &PhysicsSettings::erp},
+      {"cfm", &PhysicsSettings::cfm},
+      {"sleep", &PhysicsSettings::sleep},
+      {"sleepSpeed", &PhysicsSettings::sleepSpeed},
+      {"sleepSteps", &PhysicsSettings::sleepSteps},
   };
   return table;
 }
 
+void set(PhysicsSettings& settings, const Field& field, const std::string& text) {
+  std::visit(
+      [&](auto member) {
+        using Value = std::decay_t<decltype(settings.*member)>;
+        if constexpr (std::is_same_v<Value, double>) settings.*member = parseNumber(text);
+        if constexpr (std::is_same_v<Value, int>) settings.*member = parseWholeNumber(text);
+        if constexpr (std::is_same_v<Value, bool>) settings.*member = parseFlag(text);
+        if constexpr (std::is_same_v<Value, Eigen::Vector3d>) settings.*member = parseVector(text);
+      },
+      field);
+}
+
 std::string attributeNames() {
   std::string names;
-  for (const auto& [name, setter] : setters()) names += (names.empty() ? "" : ", ") + name;
+  for (const auto& [name, field] : fields()) names += (names.empty() ? "" : ", ") + name;
   return names;
 }
 
@@ -102,13 +102,13 @@ void applyPhysicsOverrides(PhysicsSettings& settings, const std::vector<std::str
   for (const std::string& assignment : assignments) {
     const auto equals = assignment.find('=');
     const std::string name = assignment.substr(0, equals);
-    const auto setter = setters().find(name);
-    if (equals == std::string::npos || setter == setters().end())
+    const auto field = fields().find(name);
+    if (equals == std::string::npos || field == fields().end())
       throw std::invalid_argument(
           "--physics " + assignment +
           ": expected NAME=VALUE with NAME an attribute of <Physics>: " + attributeNames());
     try {
-      setter->second(settings, assignment.substr(equals + 1));
+      set(settings, field->second, assignment.substr(equals + 1));
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument("--physics " + assignment + ": " + e.what());
     }

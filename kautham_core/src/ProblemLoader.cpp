@@ -418,7 +418,7 @@ class ProblemReader {
             "erp", "cfm", "sleep", "sleepSpeed", "sleepSteps"});
     PhysicsSettings& p = problem_.physics;
     p.where = xml_.at(e);
-    p.stepSize = positive(e, "stepSize", p.stepSize);
+    p.stepSize = xml_.number(e, "stepSize", p.stepSize);
     p.gravity = xml_.vector3(e, "gravity", p.gravity);
     p.maxContacts = xml_.integer(e, "maxContacts", p.maxContacts);
     p.solverIterations = xml_.integer(e, "solverIterations", p.solverIterations);
@@ -427,9 +427,9 @@ class ProblemReader {
     p.erp = nonNegative(e, "erp", p.erp);
     p.cfm = nonNegative(e, "cfm", p.cfm);
     p.sleep = xml_.flag(e, "sleep", p.sleep);
-    p.sleepSpeed = positive(e, "sleepSpeed", p.sleepSpeed);
+    p.sleepSpeed = xml_.number(e, "sleepSpeed", p.sleepSpeed);
     p.sleepSteps = xml_.integer(e, "sleepSteps", p.sleepSteps);
-    // The rules --physics overrides are held to as well.
+    // The ranges, checked once the element is read: the same rules hold --physics overrides.
     if (const std::optional<std::string> error = physicsSettingsError(p)) xml_.fail(e, *error);
   }
 

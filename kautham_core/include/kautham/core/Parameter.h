@@ -15,6 +15,9 @@ enum class ParameterType { Real, Integer, Boolean };
 /// A yes/no word as users write it, any case: true, 1, yes, on or false, 0, no, off (none
 /// otherwise). Planner flags and the problem file's flag attributes both read flags so.
 std::optional<bool> flagWord(const std::string& text);
+/// A number as users write it: the whole text one finite number (none otherwise). Planner
+/// parameters and --physics values both read numbers so.
+std::optional<double> numberWord(const std::string& text);
 
 /// A typed, documented planner parameter: what `kautham planners` lists. Declare one with the
 /// named builders of `Parameter` rather than by position.
