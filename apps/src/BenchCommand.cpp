@@ -37,6 +37,7 @@ struct BenchOptions {
   std::size_t jobs = 1;
   std::string shard = "1/1";
   bool mergeOnly = false;
+  bool checkOnly = false;
 };
 
 /// The results in OUT that belong to the spec's runs, made with its setup.
@@ -99,7 +100,7 @@ int runMergeOnly(const BenchOptions& options) {
   const BenchArguments& s = options.spec;
   if (!options.file.empty() || !options.planners.empty() || !options.configs.empty() ||
       !s.sets.empty() || s.runs || s.seed || s.time || s.threads || s.validate ||
-      options.shard != "1/1")
+      options.shard != "1/1" || options.checkOnly)
     throw std::invalid_argument("--merge-only runs nothing: it takes -o OUT and result folders");
   std::vector<fs::path> folders{options.output};
   std::set<fs::path> distinct;
@@ -149,7 +150,14 @@ int runBench(const CLI::App& command, BenchOptions options) {
   const BenchSpec spec = makeBenchSpec(options.spec);
   const Shard shard = parseShard(options.shard);
   const Preflight checked = preflight(spec);  // bad input stops here, before any run
+  if (!spec.description.empty()) fmt::print("about     {}\n", spec.description);
   printPlan(spec, shard, options.jobs);
+  if (options.checkOnly) {
+    fmt::print(
+        "checked   every problem loads with a valid start, every configuration's planner, "
+        "parameters and physics are accepted; nothing run\n");
+    return kExitSolved;
+  }
 
   const BenchRunOptions run{options.output, options.jobs, shard, fs::read_symlink("/proc/self/exe"),
                             planners::loadedPlugins()};
@@ -170,9 +178,10 @@ int runBench(const CLI::App& command, BenchOptions options) {
 
 void addSpecOptions(CLI::App& command, BenchOptions& options) {
   BenchArguments& s = options.spec;
-  command.add_option("--file", options.file,
-                     "benchmark file (JSON): name, problems, configs, runs, seed, time, threads, "
-                     "validate; the options below override it");
+  command.add_option(
+      "--file", options.file,
+      "benchmark file (JSON): name, description, problems, configs, runs, seed, time, "
+      "threads, validate; the options below override it");
   command.add_option("--planner", options.planners, "a planner to run, shown under its own name")
       ->allow_extra_args(false);
   command
@@ -213,12 +222,15 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->capture_default_str();
   command->add_flag("--merge-only", options->mergeOnly,
                     "run nothing: write OUT/logs from the results in OUT and the folders given");
+  command->add_flag("--check", options->checkOnly,
+                    "run nothing: load every problem and check every configuration, as before a "
+                    "campaign, then exit (0: it would start)");
   command->footer(
       "Output: OUT/runs/PROBLEM/CONFIG/run-R.json (one result per run; a run that has one is\n"
       "not run again), OUT/plans/... (plans), OUT/console/... (what the runs printed),\n"
       "OUT/logs/PROBLEM.log (OMPL benchmark logs). See docs/bench.md.\n"
-      "Exit codes: 0 every run finished (solved or not), 1 some run crashed or failed,\n"
-      "2 bad input, 130 interrupted.\n"
+      "Exit codes: 0 every run finished (solved or not; with --check: the input is good),\n"
+      "1 some run crashed or failed, 2 bad input, 130 interrupted.\n"
       "Example: kautham bench problems/pusher_free.xml --planner KPIECE --planner RRT --runs 5 \\\n"
       "           --time 10 -o out/bench\n"
       "         ompl_benchmark_statistics out/bench/logs/*.log -d out/bench/bench.db");

@@ -28,15 +28,16 @@ class BenchFileReader {
   BenchSpec read() {
     const json root = source_.parse("the benchmark file", "not JSON: ");
     if (!root.is_object()) fail("", "a benchmark file holds one JSON object");
-    static const std::set<std::string> known{"name", "problems", "configs", "runs",
-                                             "seed", "time",     "threads", "validate"};
+    static const std::set<std::string> known{"name", "description", "problems", "configs", "runs",
+                                             "seed", "time",        "threads",  "validate"};
     for (const auto& [key, value] : root.items())
       if (known.count(key) == 0)
-        fail(key, fmt::format("unknown key \"{}\"; known: name, problems, configs, runs, seed, "
-                              "time, threads, validate",
+        fail(key, fmt::format("unknown key \"{}\"; known: name, description, problems, configs, "
+                              "runs, seed, time, threads, validate",
                               key));
     BenchSpec spec;
     if (root.contains("name")) spec.name = text(root["name"], "name");
+    if (root.contains("description")) spec.description = text(root["description"], "description");
     if (root.contains("problems")) spec.problems = problems(root["problems"]);
     if (root.contains("configs")) spec.configs = configs(root["configs"]);
     if (root.contains("runs")) spec.runs = whole(root["runs"], "runs");

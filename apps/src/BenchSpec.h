@@ -24,6 +24,8 @@ struct BenchConfig {
 
 struct BenchSpec {
   std::string name;  ///< the campaign's name; empty: logs are named after their problem only
+  /// What the campaign measures, for the person who runs it again: printed, never interpreted.
+  std::string description;
   std::vector<std::filesystem::path> problems;
   std::vector<BenchConfig> configs;
   std::size_t runs = 10;

@@ -270,6 +270,34 @@ TEST_F(BenchCommandTest, AConfigurationsPhysicsReachesItsPlansAndTheirValidation
       << validation;
 }
 
+TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
+  const fs::path file = folder / "checked.json";
+  const std::string problem = (fs::path(KAUTHAM_SOURCE_DIR) / "problems/pusher_free.xml").string();
+  const auto spec = [&](const std::string& parameter) {
+    return "{\"name\": \"c\", \"description\": \"KPIECE on the free pusher, to check a check\",\n"
+           " \"problems\": [\"" +
+           problem + "\"],\n \"configs\": [{\"planner\": \"KPIECE\", \"set\": {\"" + parameter +
+           "\": \"0.5\"}}],\n \"runs\": 3}\n";
+  };
+  test::writeFile(file, spec("goal_bias"));
+  const CommandRun good = kautham("bench --check --file '" + file.string() + "' " + out());
+  EXPECT_EQ(good.exitCode, 0) << good.output;
+  EXPECT_NE(good.output.find("about     KPIECE on the free pusher, to check a check"),
+            std::string::npos)
+      << good.output;
+  EXPECT_NE(good.output.find("1 problems x 1 configurations x 3 runs = 3 runs"), std::string::npos)
+      << good.output;
+  EXPECT_NE(good.output.find("nothing run"), std::string::npos) << good.output;
+  EXPECT_FALSE(fs::exists(folder / "out")) << "--check may not run or write anything";
+
+  test::writeFile(file, spec("no_such_parameter"));
+  const CommandRun bad = kautham("bench --check --file '" + file.string() + "' " + out());
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  EXPECT_NE(bad.output.find("unknown parameter 'no_such_parameter'"), std::string::npos)
+      << bad.output;
+  EXPECT_FALSE(fs::exists(folder / "out"));
+}
+
 TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
   const CommandRun missing =
       kautham("bench problems/no_such_problem.xml --planner KPIECE " + out());
