@@ -224,7 +224,7 @@ void PKpiece::addMotion(Motion* motion) {
   if (!closest_ || motion->goalDistance < closest_->goalDistance) closest_ = motion;
   // Only a motion whose path is believed at least as much as a solution must be can end
   // one: the goal bias expands from those.
-  if (!settings_.pathBelief || motion->pathBelief >= screenConfidence())
+  if (!settings_.pathBelief || motion->pathBelief >= settings_.goalConfidence)
     keepIfNear(goalStarts_, motion);
 }
 
@@ -427,15 +427,9 @@ double PKpiece::solutionConfidence(const Candidate& c) const {
   return (settings_.pathBelief ? c.fromPathBelief : 1.0) * c.verdict.goal;
 }
 
-double PKpiece::screenConfidence() const {
-  // Only executions of the whole plan may overrule the particles (the registry refuses a screen
-  // without them): the particles' estimate then only chooses which plans are executed.
-  return settings_.screenConfidence > 0.0 ? settings_.screenConfidence : settings_.goalConfidence;
-}
-
 bool PKpiece::reachesGoal(const Candidate& c) const {
   return c.run.reachedGoal && c.judged && !c.verdict.pruned &&
-         solutionConfidence(c) >= screenConfidence();
+         solutionConfidence(c) >= settings_.goalConfidence;
 }
 
 PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, const Motion& from) {

@@ -42,17 +42,6 @@ void checkPlansCanBeCompared(const PKpieceSettings& settings) {
       " needs verified plans to choose from: set uncertainty 1 and verify_runs > 0, or plans 1");
 }
 
-/// The screen only says which plans the executions judge: with no executions it would let plans
-/// the particles doubt end the search unjudged.
-void checkScreenHasVerification(const PKpieceSettings& settings) {
-  if (settings.screenConfidence <= 0.0 || (settings.uncertainty && settings.verifyRuns > 0)) return;
-  std::ostringstream message;
-  message << "screen_confidence " << settings.screenConfidence
-          << " hands plans to whole-plan verification, and there is none: set uncertainty 1 and "
-             "verify_runs > 0, or screen_confidence 0 (goal_confidence alone decides)";
-  throw std::invalid_argument(message.str());
-}
-
 PlannerRegistry::Entry pKpiece() {
   return plannerEntry<PKpieceSettings>(
       "p-KPIECE",
@@ -66,7 +55,6 @@ PlannerRegistry::Entry pKpiece() {
         checkApproachPitch(resolved.approachPitch, context.goal().spec());
         checkSomethingJudges(resolved);
         checkPlansCanBeCompared(resolved);
-        checkScreenHasVerification(resolved);
         return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, resolved));
       });
 }

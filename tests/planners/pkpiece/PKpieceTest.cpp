@@ -353,24 +353,6 @@ TEST(PKpieceTest, SeveralPlansWithoutVerificationAreRejected) {
       "plans");
 }
 
-TEST(PKpieceTest, AScreenWithoutVerificationIsRejected) {
-  // screen_confidence only chooses which plans the executions judge: with none, plans the
-  // particles doubt would end the search unjudged.
-  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_5.xml"));
-  physics::PlanningContext context(
-      problem, 0, makeRequest(problem, "p-KPIECE", {}, seedRandomness(1)).propagation());
-  expectRefused(
-      context,
-      makeRequest(problem, "p-KPIECE", {{"screen_confidence", "0.3"}, {"verify_runs", "0"}},
-                  seedRandomness(1)),
-      "screen_confidence");
-  expectRefused(
-      context,
-      makeRequest(problem, "p-KPIECE", {{"screen_confidence", "0.3"}, {"uncertainty", "0"}},
-                  seedRandomness(1)),
-      "screen_confidence");
-}
-
 TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {
   // Nothing would judge the plan under the uncertainty; without uncertainty (pKP) it is fine.
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_5.xml"));

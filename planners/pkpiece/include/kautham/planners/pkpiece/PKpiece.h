@@ -115,9 +115,6 @@ class PKpiece : public ompl::base::Planner,
   /// The candidate's particle motions from the end of `from`, with its random streams.
   ParticleRequest particleRequest(const Candidate& candidate, const Motion& from) const;
   Candidate* chooseCandidate(std::vector<Candidate>& valid, const Motion& from);
-  /// The estimate a plan needs to be tried as a solution: screen_confidence when whole-plan
-  /// verification then decides, goal_confidence otherwise.
-  double screenConfidence() const;
   bool reachesGoal(const Candidate& candidate) const;
   /// The estimated success of the plan that would end with the candidate (goalConfidence).
   double solutionConfidence(const Candidate& candidate) const;

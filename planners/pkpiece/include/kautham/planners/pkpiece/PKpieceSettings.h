@@ -24,11 +24,6 @@ struct PKpieceSettings {
   /// often: the path belief to it times the fraction of its particles that end valid in the
   /// goal region (not in the paper: its belief judges validity, not the goal).
   double goalConfidence;
-  /// With whole-plan verification (verifyRuns): the particles' estimate at which a plan is
-  /// handed to verification, which then decides by goalConfidence; also the path belief the
-  /// goal bias grows from. The particles' estimate is a product of one-motion judgements from
-  /// fitted spreads, the executions carry the whole plan (docs/planners.md). 0: goalConfidence.
-  double screenConfidence;
   /// A candidate ends the search only where its nominal run is within this fraction of the
   /// goal's tolerance of the goal point: a plan ending on the region's border is missed by half
   /// of its executions. 1: anywhere in the region.
@@ -170,13 +165,6 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("estimated success a plan needs to end the search: the path belief "
                              "times the fraction of the last candidate's particles that end "
                              "valid in the goal"))
-          .add(&S::screenConfidence,
-               Parameter::real("screen_confidence")
-                   .byDefault(0.0)
-                   .range(0.0, 1.0)
-                   .describe("with verify_runs: the particles' estimate at which a plan is handed "
-                             "to whole-plan verification, which decides by goal_confidence; also "
-                             "the path belief the goal bias grows from (0: goal_confidence)"))
           .add(&S::goalMargin,
                Parameter::real("goal_margin")
                    .byDefault(1.0)
