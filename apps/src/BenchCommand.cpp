@@ -3,6 +3,7 @@
 // BenchSpec (what to run), BenchPreflight (bad input before any run), BenchRunner (children,
 // jobs, resume, Ctrl-C), BenchRunResult and RunProperties (the result file), OmplBenchmarkLog.
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -120,11 +121,34 @@ int runMergeOnly(const BenchOptions& options) {
   return kExitSolved;
 }
 
-void printPlan(const BenchSpec& spec, const Shard& shard, std::size_t jobs) {
+/// "40 min", "3.3 h": a duration as a person plans a campaign by.
+std::string roughDuration(double seconds) {
+  if (seconds < 120.0) return fmt::format("{:.0f} s", seconds);
+  if (seconds < 7200.0) return fmt::format("{:.0f} min", seconds / 60.0);
+  return fmt::format("{:.1f} h", seconds / 3600.0);
+}
+
+void printPlan(const BenchSpec& spec, const Preflight& checked, const Shard& shard,
+               std::size_t jobs) {
   const std::size_t all = spec.problems.size() * spec.configs.size() * spec.runs;
   fmt::print("bench     {} problems x {} configurations x {} runs = {} runs{}, {} at a time\n",
              spec.problems.size(), spec.configs.size(), spec.runs, all,
              shard.count > 1 ? fmt::format(" (shard {}/{})", shard.index, shard.count) : "", jobs);
+  // Planning ends near each run's time limit at the latest; validation has no such bound. Runs
+  // taken in turn by `jobs` workers end within total / jobs + (1 - 1 / jobs) x the longest.
+  double total = 0.0, longest = 0.0;
+  for (const RunKey& key : allRuns(spec)) {
+    if (!shard.contains(key.index)) continue;
+    total += checked.timeLimits[key.problem][key.config];
+    longest = std::max(longest, checked.timeLimits[key.problem][key.config]);
+  }
+  const double workers = static_cast<double>(jobs);
+  fmt::print("limits    planning takes at most about {} (the runs' time limits, {} at a time){}\n",
+             roughDuration(total / workers + (1.0 - 1.0 / workers) * longest), jobs,
+             spec.validate > 0 ? fmt::format("; validation ({} executions of each solved plan) "
+                                             "comes on top",
+                                             spec.validate)
+                               : "");
 }
 
 /// --planner and --config in the order they were given: the order of the log's planners.
@@ -151,7 +175,7 @@ int runBench(const CLI::App& command, BenchOptions options) {
   const Shard shard = parseShard(options.shard);
   const Preflight checked = preflight(spec);  // bad input stops here, before any run
   if (!spec.description.empty()) fmt::print("about     {}\n", spec.description);
-  printPlan(spec, shard, options.jobs);
+  printPlan(spec, checked, shard, options.jobs);
   if (options.checkOnly) {
     fmt::print(
         "checked   every problem loads with a valid start, every configuration's planner, "

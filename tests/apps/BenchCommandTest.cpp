@@ -277,7 +277,7 @@ TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
     return "{\"name\": \"c\", \"description\": \"KPIECE on the free pusher, to check a check\",\n"
            " \"problems\": [\"" +
            problem + "\"],\n \"configs\": [{\"planner\": \"KPIECE\", \"set\": {\"" + parameter +
-           "\": \"0.5\"}}],\n \"runs\": 3}\n";
+           "\": \"0.5\"}}],\n \"runs\": 3, \"time\": 5, \"validate\": 10}\n";
   };
   test::writeFile(file, spec("goal_bias"));
   const CommandRun good = kautham("bench --check --file '" + file.string() + "' " + out());
@@ -287,8 +287,19 @@ TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
       << good.output;
   EXPECT_NE(good.output.find("1 problems x 1 configurations x 3 runs = 3 runs"), std::string::npos)
       << good.output;
+  // Three runs of at most 5 s, one at a time; validation is not bounded.
+  EXPECT_NE(good.output.find("limits    planning takes at most about 15 s (the runs' time limits, "
+                             "1 at a time); validation (10 executions of each solved plan) comes "
+                             "on top"),
+            std::string::npos)
+      << good.output;
   EXPECT_NE(good.output.find("nothing run"), std::string::npos) << good.output;
   EXPECT_FALSE(fs::exists(folder / "out")) << "--check may not run or write anything";
+  // Two at a time: the last of three 5 s runs may start when the first ends.
+  const CommandRun twoJobs =
+      kautham("bench --check --jobs 2 --file '" + file.string() + "' " + out());
+  EXPECT_NE(twoJobs.output.find("planning takes at most about 10 s"), std::string::npos)
+      << twoJobs.output;
 
   test::writeFile(file, spec("no_such_parameter"));
   const CommandRun bad = kautham("bench --check --file '" + file.string() + "' " + out());
