@@ -16,8 +16,12 @@ for file in "$bench"/*.json; do
   checked=$((checked + 1))
   if ! output=$("$kautham" bench --check --file "$file" 2>&1); then
     failed=$((failed + 1))
-    echo "FAILED $file: $(echo "$output" | grep -m1 -i 'error' || echo "$output" | tail -1)"
+    echo "FAILED $file: $(echo "$output" | grep -m1 '^error: ' || echo "$output" | tail -1)"
   fi
 done
+if [ "$checked" -eq 0 ]; then
+  echo "no benchmark file (*.json) in $bench: nothing checked"
+  exit 1
+fi
 echo "$checked benchmark files checked, $failed failed"
-[ "$checked" -gt 0 ] && [ "$failed" -eq 0 ]
+[ "$failed" -eq 0 ]

@@ -101,7 +101,7 @@ int runMergeOnly(const BenchOptions& options) {
   const BenchArguments& s = options.spec;
   if (!options.file.empty() || !options.planners.empty() || !options.configs.empty() ||
       !s.sets.empty() || s.runs || s.seed || s.time || s.threads || s.validate ||
-      options.shard != "1/1" || options.checkOnly)
+      options.shard != "1/1")
     throw std::invalid_argument("--merge-only runs nothing: it takes -o OUT and result folders");
   std::vector<fs::path> folders{options.output};
   std::set<fs::path> distinct;
@@ -128,27 +128,38 @@ std::string roughDuration(double seconds) {
   return fmt::format("{:.1f} h", seconds / 3600.0);
 }
 
+/// What a campaign will do: its size, the runs OUT already has, how long planning can take.
 void printPlan(const BenchSpec& spec, const Preflight& checked, const Shard& shard,
-               std::size_t jobs) {
+               std::size_t jobs, const std::vector<RunKey>& toMake, std::size_t resumed,
+               const fs::path& output) {
   const std::size_t all = spec.problems.size() * spec.configs.size() * spec.runs;
   fmt::print("bench     {} problems x {} configurations x {} runs = {} runs{}, {} at a time\n",
              spec.problems.size(), spec.configs.size(), spec.runs, all,
              shard.count > 1 ? fmt::format(" (shard {}/{})", shard.index, shard.count) : "", jobs);
+  if (resumed > 0)
+    fmt::print("resume    {} of these runs have results in {} already; they are not run again\n",
+               resumed, output.string());
+  if (toMake.empty()) {
+    fmt::print("limits    nothing left to run\n");
+    return;
+  }
   // Planning ends near each run's time limit at the latest; validation has no such bound. Runs
-  // taken in turn by `jobs` workers end within total / jobs + (1 - 1 / jobs) x the longest.
+  // taken in turn by `workers` workers end within total / workers + (1 - 1 / workers) x the
+  // longest.
   double total = 0.0, longest = 0.0;
-  for (const RunKey& key : allRuns(spec)) {
-    if (!shard.contains(key.index)) continue;
+  for (const RunKey& key : toMake) {
     total += checked.timeLimits[key.problem][key.config];
     longest = std::max(longest, checked.timeLimits[key.problem][key.config]);
   }
-  const double workers = static_cast<double>(jobs);
-  fmt::print("limits    planning takes at most about {} (the runs' time limits, {} at a time){}\n",
-             roughDuration(total / workers + (1.0 - 1.0 / workers) * longest), jobs,
-             spec.validate > 0 ? fmt::format("; validation ({} executions of each solved plan) "
-                                             "comes on top",
-                                             spec.validate)
-                               : "");
+  const double workers = static_cast<double>(std::min(jobs, toMake.size()));
+  fmt::print(
+      "limits    planning the {} runs left takes at most about {} (their time limits, {} at "
+      "a time){}\n",
+      toMake.size(), roughDuration(total / workers + (1.0 - 1.0 / workers) * longest), jobs,
+      spec.validate > 0 ? fmt::format("; validation ({} executions of each solved plan) "
+                                      "comes on top",
+                                      spec.validate)
+                        : "");
 }
 
 /// --planner and --config in the order they were given: the order of the log's planners.
@@ -174,8 +185,16 @@ int runBench(const CLI::App& command, BenchOptions options) {
   const BenchSpec spec = makeBenchSpec(options.spec);
   const Shard shard = parseShard(options.shard);
   const Preflight checked = preflight(spec);  // bad input stops here, before any run
-  if (!spec.description.empty()) fmt::print("about     {}\n", spec.description);
-  printPlan(spec, checked, shard, options.jobs);
+  std::size_t resumed = 0;  // and results of another setup in OUT, before any run too
+  const std::vector<RunKey> toMake = runsToMake(spec, checked, options.output, shard, resumed);
+  if (!spec.description.empty()) {
+    const bool overridden = !options.inputs.empty() || !options.spec.configs.empty();
+    fmt::print("about     {}{}\n", spec.description,
+               overridden ? " (the file's; the command line replaced its problems or "
+                            "configurations)"
+                          : "");
+  }
+  printPlan(spec, checked, shard, options.jobs, toMake, resumed, options.output);
   if (options.checkOnly) {
     fmt::print(
         "checked   every problem loads with a valid start, every configuration's planner, "
@@ -244,11 +263,14 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
       ->add_option("--shard", options->shard,
                    "i/n: only the runs whose index is i-1 modulo n (merge with --merge-only)")
       ->capture_default_str();
-  command->add_flag("--merge-only", options->mergeOnly,
-                    "run nothing: write OUT/logs from the results in OUT and the folders given");
-  command->add_flag("--check", options->checkOnly,
-                    "run nothing: load every problem and check every configuration, as before a "
-                    "campaign, then exit (0: it would start)");
+  CLI::Option* mergeOnly = command->add_flag(
+      "--merge-only", options->mergeOnly,
+      "run nothing: write OUT/logs from the results in OUT and the folders given");
+  command
+      ->add_flag("--check", options->checkOnly,
+                 "run nothing: load every problem and check every configuration, as before a "
+                 "campaign, then exit (0: it would start)")
+      ->excludes(mergeOnly);
   command->footer(
       "Output: OUT/runs/PROBLEM/CONFIG/run-R.json (one result per run; a run that has one is\n"
       "not run again), OUT/plans/... (plans), OUT/console/... (what the runs printed),\n"

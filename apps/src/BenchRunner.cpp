@@ -125,25 +125,17 @@ class BenchRunner {
 
   /// This shard's runs without a result; those with one are counted as done.
   std::deque<RunKey> runsToMake() {
-    std::deque<RunKey> pending;
+    std::size_t resumed = 0;
+    const std::vector<RunKey> pending =
+        apps::runsToMake(spec_, preflight_, options_.output, options_.shard, resumed);
     for (const RunKey& key : allRuns(spec_)) {
       if (!options_.shard.contains(key.index)) continue;
       ++summary_.total;
       const fs::path file = layout_.result(problem(key), config(key).name, key.run);
-      if (!fs::exists(file)) {
-        pending.push_back(key);
-        continue;
-      }
-      const json result = readRunResult(file);
-      if (result["setup"] != setupOf(key))
-        throw core::InputError(
-            {file, 0}, fmt::format("this result was made with another setup ({}, now {}); give "
-                                   "another output folder, or delete the result to run it again",
-                                   result["setup"].dump(), setupOf(key).dump()));
-      ++summary_.resumed;
-      count(result);
+      if (fs::exists(file)) count(readRunResult(file));
     }
-    return pending;
+    summary_.resumed = resumed;
+    return std::deque<RunKey>(pending.begin(), pending.end());
   }
 
   void count(const json& result) {
@@ -301,6 +293,31 @@ class BenchRunner {
 };
 
 }  // namespace
+
+std::vector<RunKey> runsToMake(const BenchSpec& spec, const Preflight& preflight,
+                               const fs::path& output, const Shard& shard, std::size_t& resumed) {
+  const BenchLayout layout(output);
+  std::vector<RunKey> pending;
+  resumed = 0;
+  for (const RunKey& key : allRuns(spec)) {
+    if (!shard.contains(key.index)) continue;
+    const fs::path file = layout.result(problemName(spec.problems[key.problem]),
+                                        spec.configs[key.config].name, key.run);
+    if (!fs::exists(file)) {
+      pending.push_back(key);
+      continue;
+    }
+    const json setup = runSetup(spec, key, preflight.timeLimits[key.problem][key.config]);
+    const json result = readRunResult(file);
+    if (result["setup"] != setup)
+      throw core::InputError(
+          {file, 0}, fmt::format("this result was made with another setup ({}, now {}); give "
+                                 "another output folder, or delete the result to run it again",
+                                 result["setup"].dump(), setup.dump()));
+    ++resumed;
+  }
+  return pending;
+}
 
 BenchSummary runBenchmark(const BenchSpec& spec, const Preflight& preflight,
                           const BenchRunOptions& options) {

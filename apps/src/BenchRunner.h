@@ -31,6 +31,13 @@ struct BenchSummary {
   bool interrupted = false;
 };
 
+/// The runs of `shard` that have no result in `output` yet, in order; `resumed` counts those that
+/// have one. Reads only. Throws core::InputError when a result of the same run was made with
+/// another setup (resuming would mix two experiments) or cannot be read.
+std::vector<RunKey> runsToMake(const BenchSpec& spec, const Preflight& preflight,
+                               const std::filesystem::path& output, const Shard& shard,
+                               std::size_t& resumed);
+
 /// Throws core::InputError, before running anything, when OUT holds a result of the same run
 /// made with another setup (resuming would mix two experiments) or one that cannot be read.
 BenchSummary runBenchmark(const BenchSpec& spec, const Preflight& preflight,

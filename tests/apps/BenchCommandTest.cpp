@@ -288,9 +288,9 @@ TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
   EXPECT_NE(good.output.find("1 problems x 1 configurations x 3 runs = 3 runs"), std::string::npos)
       << good.output;
   // Three runs of at most 5 s, one at a time; validation is not bounded.
-  EXPECT_NE(good.output.find("limits    planning takes at most about 15 s (the runs' time limits, "
-                             "1 at a time); validation (10 executions of each solved plan) comes "
-                             "on top"),
+  EXPECT_NE(good.output.find("limits    planning the 3 runs left takes at most about 15 s (their "
+                             "time limits, 1 at a time); validation (10 executions of each solved "
+                             "plan) comes on top"),
             std::string::npos)
       << good.output;
   EXPECT_NE(good.output.find("nothing run"), std::string::npos) << good.output;
@@ -298,8 +298,17 @@ TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
   // Two at a time: the last of three 5 s runs may start when the first ends.
   const CommandRun twoJobs =
       kautham("bench --check --jobs 2 --file '" + file.string() + "' " + out());
-  EXPECT_NE(twoJobs.output.find("planning takes at most about 10 s"), std::string::npos)
-      << twoJobs.output;
+  EXPECT_EQ(twoJobs.exitCode, 0) << twoJobs.output;
+  EXPECT_NE(twoJobs.output.find("takes at most about 10 s"), std::string::npos) << twoJobs.output;
+  // The command line replaced the file's configurations: its description is marked so.
+  const CommandRun replaced =
+      kautham("bench --check --planner RRT --file '" + file.string() + "' " + out());
+  EXPECT_EQ(replaced.exitCode, 0) << replaced.output;
+  EXPECT_NE(replaced.output.find("(the file's; the command line replaced"), std::string::npos)
+      << replaced.output;
+  const CommandRun merge = kautham("bench --check --merge-only " + out());
+  EXPECT_NE(merge.exitCode, 0) << merge.output;
+  EXPECT_NE(merge.output.find("excludes"), std::string::npos) << merge.output;
 
   test::writeFile(file, spec("no_such_parameter"));
   const CommandRun bad = kautham("bench --check --file '" + file.string() + "' " + out());
@@ -307,6 +316,21 @@ TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
   EXPECT_NE(bad.output.find("unknown parameter 'no_such_parameter'"), std::string::npos)
       << bad.output;
   EXPECT_FALSE(fs::exists(folder / "out"));
+}
+
+TEST_F(BenchCommandTest, CheckSeesWhatTheOutputFolderAlreadyHolds) {
+  // A run made, then checked again: resumed, nothing left; checked with another time limit, its
+  // result belongs to another setup, which the campaign would refuse: so does --check.
+  const std::string run = "bench problems/pusher_free.xml --planner KPIECE --runs 1 " + out();
+  ASSERT_EQ(kautham(run + " --time 1").exitCode, 0);
+  const CommandRun same = kautham(run + " --time 1 --check");
+  EXPECT_EQ(same.exitCode, 0) << same.output;
+  EXPECT_NE(same.output.find("resume    1 of these runs have results in"), std::string::npos)
+      << same.output;
+  EXPECT_NE(same.output.find("limits    nothing left to run"), std::string::npos) << same.output;
+  const CommandRun other = kautham(run + " --time 2 --check");
+  EXPECT_EQ(other.exitCode, 2) << other.output;
+  EXPECT_NE(other.output.find("made with another setup"), std::string::npos) << other.output;
 }
 
 TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
