@@ -185,8 +185,8 @@ int runBench(const CLI::App& command, BenchOptions options) {
   const BenchSpec spec = makeBenchSpec(options.spec);
   const Shard shard = parseShard(options.shard);
   const Preflight checked = preflight(spec);  // bad input stops here, before any run
-  std::size_t resumed = 0;  // and results of another setup in OUT, before any run too
-  const std::vector<RunKey> toMake = runsToMake(spec, checked, options.output, shard, resumed);
+  // Results of another setup in OUT stop it here too, before any run.
+  const RunsInOutput runs = runsInOutput(spec, checked, options.output, shard);
   if (!spec.description.empty()) {
     const bool overridden = !options.inputs.empty() || !options.spec.configs.empty();
     fmt::print("about     {}{}\n", spec.description,
@@ -194,7 +194,7 @@ int runBench(const CLI::App& command, BenchOptions options) {
                             "configurations)"
                           : "");
   }
-  printPlan(spec, checked, shard, options.jobs, toMake, resumed, options.output);
+  printPlan(spec, checked, shard, options.jobs, runs.toMake, runs.made.size(), options.output);
   if (options.checkOnly) {
     fmt::print(
         "checked   every problem loads with a valid start, every configuration's planner, "

@@ -125,17 +125,11 @@ class BenchRunner {
 
   /// This shard's runs without a result; those with one are counted as done.
   std::deque<RunKey> runsToMake() {
-    std::size_t resumed = 0;
-    const std::vector<RunKey> pending =
-        apps::runsToMake(spec_, preflight_, options_.output, options_.shard, resumed);
-    for (const RunKey& key : allRuns(spec_)) {
-      if (!options_.shard.contains(key.index)) continue;
-      ++summary_.total;
-      const fs::path file = layout_.result(problem(key), config(key).name, key.run);
-      if (fs::exists(file)) count(readRunResult(file));
-    }
-    summary_.resumed = resumed;
-    return std::deque<RunKey>(pending.begin(), pending.end());
+    const RunsInOutput runs = runsInOutput(spec_, preflight_, options_.output, options_.shard);
+    summary_.total = runs.toMake.size() + runs.made.size();
+    summary_.resumed = runs.made.size();
+    for (const json& result : runs.made) count(result);
+    return std::deque<RunKey>(runs.toMake.begin(), runs.toMake.end());
   }
 
   void count(const json& result) {
@@ -294,29 +288,28 @@ class BenchRunner {
 
 }  // namespace
 
-std::vector<RunKey> runsToMake(const BenchSpec& spec, const Preflight& preflight,
-                               const fs::path& output, const Shard& shard, std::size_t& resumed) {
+RunsInOutput runsInOutput(const BenchSpec& spec, const Preflight& preflight, const fs::path& output,
+                          const Shard& shard) {
   const BenchLayout layout(output);
-  std::vector<RunKey> pending;
-  resumed = 0;
+  RunsInOutput runs;
   for (const RunKey& key : allRuns(spec)) {
     if (!shard.contains(key.index)) continue;
     const fs::path file = layout.result(problemName(spec.problems[key.problem]),
                                         spec.configs[key.config].name, key.run);
     if (!fs::exists(file)) {
-      pending.push_back(key);
+      runs.toMake.push_back(key);
       continue;
     }
     const json setup = runSetup(spec, key, preflight.timeLimits[key.problem][key.config]);
-    const json result = readRunResult(file);
+    json result = readRunResult(file);
     if (result["setup"] != setup)
       throw core::InputError(
           {file, 0}, fmt::format("this result was made with another setup ({}, now {}); give "
                                  "another output folder, or delete the result to run it again",
                                  result["setup"].dump(), setup.dump()));
-    ++resumed;
+    runs.made.push_back(std::move(result));
   }
-  return pending;
+  return runs;
 }
 
 BenchSummary runBenchmark(const BenchSpec& spec, const Preflight& preflight,

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "BenchPreflight.h"
 #include "BenchSpec.h"
 
@@ -31,12 +33,17 @@ struct BenchSummary {
   bool interrupted = false;
 };
 
-/// The runs of `shard` that have no result in `output` yet, in order; `resumed` counts those that
-/// have one. Reads only. Throws core::InputError when a result of the same run was made with
-/// another setup (resuming would mix two experiments) or cannot be read.
-std::vector<RunKey> runsToMake(const BenchSpec& spec, const Preflight& preflight,
-                               const std::filesystem::path& output, const Shard& shard,
-                               std::size_t& resumed);
+/// Where a shard's runs stand in OUT: those without a result yet, in order, and the results of
+/// the others (resumed, not run again).
+struct RunsInOutput {
+  std::vector<RunKey> toMake;
+  std::vector<nlohmann::json> made;
+};
+
+/// Reads only. Throws core::InputError when a result of the same run was made with another
+/// setup (resuming would mix two experiments) or cannot be read.
+RunsInOutput runsInOutput(const BenchSpec& spec, const Preflight& preflight,
+                          const std::filesystem::path& output, const Shard& shard);
 
 /// Throws core::InputError, before running anything, when OUT holds a result of the same run
 /// made with another setup (resuming would mix two experiments) or one that cannot be read.
