@@ -29,8 +29,6 @@ constexpr double kOverTops = 0.04;  // m
 // The goal link is at the fingertips; the fingers' middle, which should meet the object,
 // lies this far back along the approach.
 constexpr double kFingerMiddle = 0.025;  // m
-// Half a finger's width along the axis the fingers open on.
-constexpr double kFingerHalf = 0.0075;  // m
 // How far the gripper reaches back from the goal link (fingers, palm, wrist), held level: the
 // room a stand-off needs lies along this footprint (shorter as the gripper points down).
 constexpr double kFootprint = 0.12;  // m
@@ -68,41 +66,17 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
   if (back_.norm() < 1e-9 || across_.norm() < 1e-9) return;  // a vertical approach
   back_.normalize();
   across_.normalize();
-  const Eigen::Vector3d level = spec.levelAxis->normalized();
-  halfWidth_ = 0.5 * spec.freeSpace->size.dot(level.cwiseAbs());
-  // The gripper's thickness: the free space across its level axis and its approach (+z).
-  halfThickness_ = 0.5 * spec.freeSpace->size.dot(Eigen::Vector3d::UnitZ().cross(level).cwiseAbs());
+  halfWidth_ = 0.5 * spec.freeSpace->size.dot(spec.levelAxis->normalized().cwiseAbs());
   lowest_ = context.problem().workspace.min().z() + kFloorMargin;
-  push_ = posture(pitch, false);
-  corridor_ = posture(std::max(pitch, settings.corridorPitch), false);
-  crowded_ = posture(settings.crowdedPitch, false);
-  if (settings.crowdedTurn) {
-    turnedPush_ = posture(push_.pitch, true);
-    turnedCorridor_ = posture(corridor_.pitch, true);
-  }
+  push_ = posture(pitch);
+  corridor_ = posture(std::max(pitch, settings.corridorPitch));
+  crowded_ = posture(settings.crowdedPitch);
 }
 
-ClearingPush::Posture ClearingPush::posture(double pitch, bool turned) const {
+ClearingPush::Posture ClearingPush::posture(double pitch) const {
   const Eigen::AngleAxisd pitchDown(-pitch, across_);
-  Posture p;
-  p.pitch = pitch;
-  p.turned = turned;
-  p.orientation = pitchDown * context_.goal().nominalGoalPose().linear();
-  p.fingers = pitchDown * Eigen::Vector3d(-back_);
-  p.reach = kFootprint * std::cos(pitch);
-  p.halfWidth = halfWidth_;
-  if (!turned) return p;
-  // Turned a quarter about the approach, the fingers open in the plane of the approach and the
-  // vertical; the lower one pushes, the goal link between the fingertips above and ahead of it.
-  p.orientation = p.orientation * Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitZ());
-  Eigen::Vector3d lower = p.orientation.col(1);
-  if (lower.z() > 0.0) lower = -lower;
-  p.fromContact = -(halfWidth_ - kFingerHalf) * lower;
-  // Over the table the fingers reach as far ahead of the goal link as behind it.
-  p.ahead = std::abs(p.fromContact.dot(back_));
-  p.reach = std::max(p.reach, p.ahead);
-  p.halfWidth = halfThickness_;
-  return p;
+  return {pitch, pitchDown * context_.goal().nominalGoalPose().linear(),
+          pitchDown * Eigen::Vector3d(-back_), kFootprint * std::cos(pitch)};
 }
 
 std::optional<std::size_t> ClearingPush::corridorBlocker(const double* state) const {
@@ -139,43 +113,29 @@ std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const 
   // The corridor first; after it, the free space (a push of its own, counted as kLaterPush).
   if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
     return pushStep(state, *inCorridor,
-                    inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0, corridor_,
-                    turnedCorridor_);
-  if (inFreeSpace) return pushStep(state, *inFreeSpace, 0.0, push_, turnedPush_);
+                    inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0, corridor_);
+  if (inFreeSpace) return pushStep(state, *inFreeSpace, 0.0, push_);
   return std::nullopt;
 }
 
 const ClearingPush::Posture& ClearingPush::choosePosture(const double* state, std::size_t blocker,
-                                                         const Posture& own,
-                                                         const Posture& turned) const {
-  std::vector<const Posture*> options{&own};
-  if (crowded_.pitch > own.pitch) options.push_back(&crowded_);
-  if (turned.turned) options.push_back(&turned);
-  if (options.size() == 1) return own;
+                                                         const Posture& own) const {
+  if (crowded_.pitch <= own.pitch) return own;
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
-  // A push under way keeps the posture the gripper is nearest: the pitch it has now, turned or
-  // not.
-  for (const Posture* option : options)
-    if (onLine(link, aimAt(centre, *option))) return nearest(state, options);
+  if (onLine(link, aimAt(centre, own)) || onLine(link, aimAt(centre, crowded_))) {
+    // A push under way keeps the posture the gripper is nearest: the pitch it has now.
+    return nearer(pitchNow(state), own, crowded_);
+  }
   const double ownRoom = widerRoom(state, centre, blocker, own);
   if (ownRoom >= kCrowdedRoom) return own;
-  const Posture* roomiest = &own;
-  double most = ownRoom;
-  for (const Posture* option : options) {
-    const double room = widerRoom(state, centre, blocker, *option);
-    if (room > most) {
-      most = room;
-      roomiest = option;
-    }
-  }
-  return *roomiest;
+  return widerRoom(state, centre, blocker, crowded_) > ownRoom ? crowded_ : own;
 }
 
 double ClearingPush::widerRoom(const double* state, const Eigen::Vector3d& centre,
                                std::size_t blocker, const Posture& posture) const {
-  return std::max(room(state, standOff(centre, posture, 1.0), blocker, posture),
-                  room(state, standOff(centre, posture, -1.0), blocker, posture));
+  return std::max(room(state, standOff(centre, posture, 1.0), blocker, posture.reach),
+                  room(state, standOff(centre, posture, -1.0), blocker, posture.reach));
 }
 
 double pitchBelowLevel(const Eigen::Matrix3d& turn) {
@@ -186,26 +146,9 @@ double ClearingPush::pitchNow(const double* state) const {
   return pitchBelowLevel(context_.layout().goalLinkOrientation(state));
 }
 
-bool ClearingPush::turnedNow(const double* state) const {
-  // Turned, the goal's level axis (the fingers' opening axis) stands up from the table.
-  const Eigen::Vector3d level = context_.goal().spec().levelAxis->normalized();
-  const Eigen::Vector3d opening = context_.layout().goalLinkOrientation(state) * level;
-  return std::abs(opening.z()) > std::sqrt(0.5);
-}
-
-const ClearingPush::Posture& ClearingPush::nearest(
-    const double* state, const std::vector<const Posture*>& options) const {
-  const double pitch = pitchNow(state);
-  const bool turned = turnedNow(state);
-  const Posture* best = options.front();
-  for (const Posture* option : options) {
-    // A posture turned otherwise than the gripper is never nearer than one turned as it is.
-    const auto distance = [&](const Posture* p) {
-      return std::abs(pitch - p->pitch) + (p->turned == turned ? 0.0 : 10.0);
-    };
-    if (distance(option) < distance(best)) best = option;
-  }
-  return *best;
+const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a,
+                                                  const Posture& b) {
+  return std::abs(pitch - b.pitch) < std::abs(pitch - a.pitch) ? b : a;
 }
 
 bool ClearingPush::onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const {
@@ -219,24 +162,25 @@ Eigen::Vector3d ClearingPush::aimAt(const Eigen::Vector3d& centre, const Posture
   aim.z() -= belowCentre_;
   aim += kFingerMiddle * posture.fingers;
   aim.z() = std::max(aim.z(), lowest_);
-  return aim + posture.fromContact;
+  return aim;
 }
 
 Eigen::Vector3d ClearingPush::standOff(const Eigen::Vector3d& centre, const Posture& posture,
                                        double side) const {
-  return aimAt(centre, posture) + side * (posture.halfWidth + kStandOff) * across_;
+  return aimAt(centre, posture) + side * (halfWidth_ + kStandOff) * across_;
 }
 
 ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t blocker, double later,
-                                          const Posture& own, const Posture& turned) const {
+                                          const Posture& own) const {
   const physics::WorkspaceGoal& goal = context_.goal();
-  const Posture& posture = choosePosture(state, blocker, own, turned);
+  const Posture& posture = choosePosture(state, blocker, own);
   const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
   const Eigen::Vector3d object = aimAt(centre, posture);
   const Eigen::Vector3d plus = standOff(centre, posture, 1.0);
   const Eigen::Vector3d minus = standOff(centre, posture, -1.0);
   // Push away from the side with more room: the stand-off lies on the other side.
-  const bool fromPlus = room(state, plus, blocker, posture) >= room(state, minus, blocker, posture);
+  const bool fromPlus =
+      room(state, plus, blocker, posture.reach) >= room(state, minus, blocker, posture.reach);
   const Eigen::Vector3d direction = fromPlus ? Eigen::Vector3d(-across_) : across_;
   const Eigen::Vector3d start = fromPlus ? plus : minus;
   const Eigen::Vector3d end = object + kPushThrough * direction;
@@ -257,9 +201,8 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   // corridor's steep push to the free space's level one).
   const Posture* held = &posture;
   if (transfer.leg == Transfer::Leg::Up) {
-    std::vector<const Posture*> options{&push_, &corridor_, &crowded_};
-    if (turnedPush_.turned) options.insert(options.end(), {&turnedPush_, &turnedCorridor_});
-    held = &nearest(state, options);
+    const double pitch = pitchNow(state);
+    held = &nearer(pitch, nearer(pitch, push_, corridor_), crowded_);
   }
   return Step{transfer.waypoint, held->orientation,
               transfer.length + (end - start).norm() + endToGoal, false};
@@ -279,17 +222,16 @@ Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target
 }
 
 double ClearingPush::room(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
-                          const Posture& posture) const {
+                          double reach) const {
   double nearest = std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d wrist = point + posture.reach * back_;
-  const Eigen::Vector3d tip = point - posture.ahead * back_;
+  const Eigen::Vector3d wrist = point + reach * back_;
   const auto& bodies = context_.layout().bodies;
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;
     // Horizontal distances: the objects stand on the table, the gripper above it.
     const Eigen::Vector2d object = physics::WorldLayout::position(state, b).head<2>();
-    nearest = std::min(
-        nearest, core::distanceToSegment<Eigen::Vector2d>(object, tip.head<2>(), wrist.head<2>()));
+    nearest = std::min(nearest, core::distanceToSegment<Eigen::Vector2d>(object, point.head<2>(),
+                                                                         wrist.head<2>()));
   }
   return nearest;
 }

@@ -17,18 +17,6 @@ int goalLinkOf(const physics::PlanningContext& context) {
     throw std::logic_error("JointSpaceSteering: no goal link " + context.query().goal.link);
   return *link;
 }
-// The goal's level axis (the fingers' opening axis), or, where `orientation` turns the gripper a
-// quarter about its approach (a push with the fingers one above the other), the link axis
-// across it: the one of the two that `orientation` holds nearer level.
-std::optional<Eigen::Vector3d> levelAxisHeldBy(const physics::GoalSpec& spec,
-                                               const Eigen::Matrix3d& orientation) {
-  if (!spec.levelAxis) return std::nullopt;
-  const Eigen::Vector3d level = spec.levelAxis->normalized();
-  const Eigen::Vector3d across = Eigen::Vector3d::UnitZ().cross(level);
-  return std::abs((orientation * across).z()) < std::abs((orientation * level).z()) ? across
-                                                                                    : level;
-}
-
 }  // namespace
 
 JointSpaceSteering::JointSpaceSteering(const physics::PlanningContext& context)
@@ -49,7 +37,7 @@ std::optional<NominalMotion> JointSpaceSteering::towards(const double* state,
   target.position = position;
   const physics::GoalSpec& spec = context_.goal().spec();
   if (spec.approach) target.approach = orientation.col(2);
-  target.levelAxis = levelAxisHeldBy(spec, orientation);
+  target.levelAxis = spec.levelAxis;
   target.tolerance = kPositionTolerance;
   target.angleTolerance = kAngleTolerance;
   const std::optional<std::vector<double>> there = ik_.solve(target, now);

@@ -41,11 +41,6 @@ struct PushSettings {
   /// its own pitch, if that leaves more room (the footprint is shorter as it points down); at
   /// or below the push's own pitch (the default 0): never.
   double crowdedPitch = 0.0;
-  /// Where no stand-off beside the object has room for the gripper as the goal holds it (its
-  /// fingers open across the push), the push may go with the gripper turned a quarter about its
-  /// approach, if that leaves more room: its fingers one above the other, the lower one pushing,
-  /// the gripper as narrow across the push as it is thick.
-  bool crowdedTurn = false;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -106,26 +101,17 @@ class ClearingPush {
   /// table.
   struct Posture {
     double pitch = 0.0;
-    bool turned = false;  ///< a quarter about the approach (PushSettings::crowdedTurn)
     Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();
     Eigen::Vector3d fingers = Eigen::Vector3d::Zero();
     double reach = 0.0;
-    double ahead = 0.0;  ///< m the turned fingers reach ahead of the goal link over the table
-    /// From where the pushing finger meets the object to the goal link: turned, the lower
-    /// finger pushes, the goal link (between the fingertips) above and ahead of it.
-    Eigen::Vector3d fromContact = Eigen::Vector3d::Zero();
-    double halfWidth = 0.0;  ///< m the gripper reaches across the push from the goal link
   };
-  Posture posture(double pitch, bool turned) const;
+  Posture posture(double pitch) const;
   /// The push that clears `blocker`, held as `own` (or crowded); `later` (m) stands for the
   /// clearing still to come after it (in the remaining length).
-  Step pushStep(const double* state, std::size_t blocker, double later, const Posture& own,
-                const Posture& turned) const;
-  /// `own`, or when no stand-off has room at `own`, the one of the crowded posture and `turned`
-  /// (each if it is set up) with the most room, if more; during a push the one nearest the
-  /// gripper's pitch and turn.
-  const Posture& choosePosture(const double* state, std::size_t blocker, const Posture& own,
-                               const Posture& turned) const;
+  Step pushStep(const double* state, std::size_t blocker, double later, const Posture& own) const;
+  /// `own`, or the crowded posture when no stand-off has room at `own` and more at it; during a
+  /// push the one nearest the gripper's pitch.
+  const Posture& choosePosture(const double* state, std::size_t blocker, const Posture& own) const;
   /// Where the goal link meets the object centred at `centre`: its fingers' middle below the
   /// centre, not below the workspace's floor.
   Eigen::Vector3d aimAt(const Eigen::Vector3d& centre, const Posture& posture) const;
@@ -137,30 +123,24 @@ class ClearingPush {
                    const Posture& posture) const;
   /// How far the gripper points down in `state` (rad).
   double pitchNow(const double* state) const;
-  /// Whether the gripper is turned a quarter about its approach in `state`.
-  bool turnedNow(const double* state) const;
-  /// Of `options`, the posture turned as the gripper is in `state` whose pitch is nearest its
-  /// pitch (the first of equals).
-  const Posture& nearest(const double* state, const std::vector<const Posture*>& options) const;
+  /// Of `a` and `b`, the posture whose pitch is nearer `pitch` (`a` if as near).
+  static const Posture& nearer(double pitch, const Posture& a, const Posture& b);
   /// Whether `link` is on the line of a push through `aim` (across the approach).
   bool onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const;
   /// How near the stand-off at `point` (and the footprint `reach` behind it) the other objects
   /// stand.
   double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
-              const Posture& posture) const;
+              double reach) const;
 
   const physics::PlanningContext& context_;
   Eigen::Vector3d back_ = Eigen::Vector3d::Zero();    ///< level, against the approach
   Eigen::Vector3d across_ = Eigen::Vector3d::Zero();  ///< level, across the approach
   double halfWidth_ = 0.0;                            ///< of the free space, across the approach
-  double halfThickness_ = 0.0;  ///< of the free space, across its level axis and the approach
-  double lowest_ = 0.0;         ///< the lowest the goal link may go (workspace floor and margin)
-  double travelHeight_ = 0.0;   ///< see travelHeight()
-  Posture push_;                ///< the free space's push
-  Posture corridor_;            ///< the corridor's push
-  Posture crowded_;             ///< either, when its stand-offs have no room
-  Posture turnedPush_;          ///< the free space's push turned (PushSettings::crowdedTurn)
-  Posture turnedCorridor_;      ///< the corridor's push turned
+  double lowest_ = 0.0;        ///< the lowest the goal link may go (workspace floor and margin)
+  double travelHeight_ = 0.0;  ///< see travelHeight()
+  Posture push_;               ///< the free space's push
+  Posture corridor_;           ///< the corridor's push
+  Posture crowded_;            ///< either, when its stand-offs have no room
   /// A movable object's bounds at the start, and where its body was then (the footprint moves
   /// with its body).
   struct Footprint {

@@ -68,9 +68,6 @@ struct PKpieceSettings {
   /// How far a push points the gripper down (rad) when no stand-off beside the object has room
   /// for it at its own pitch (0: never steeper than its own).
   double crowdedPitch;
-  /// Where no stand-off has room, a clearing push may turn the gripper a quarter about its
-  /// approach (PushSettings::crowdedTurn).
-  bool crowdedTurn;
   /// How far from the goal point a plan may aim to end (m) where an object reaches into the
   /// free space there but not at the nearer end (0: the goal point only).
   double goalShift;
@@ -256,13 +253,6 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("how far a push points the gripper down (rad) when no stand-off "
                              "beside the object leaves its footprint room at the push's own "
                              "pitch, if that leaves more (0: never steeper than its own)"))
-          .add(&S::crowdedTurn,
-               Parameter::flag("crowded_turn")
-                   .byDefault(0)
-                   .describe("where no stand-off beside the object leaves the gripper room, push "
-                             "with it turned a quarter about its approach, if that leaves more: "
-                             "its fingers one above the other, as narrow across the push as it "
-                             "is thick"))
           .add(&S::goalShift,
                Parameter::real("goal_shift")
                    .byDefault(0.0)
