@@ -60,8 +60,15 @@ planners::SolveHooks terminalHooks() {
   return hooks;
 }
 
+std::uint64_t failureTotal(const std::vector<planners::FailureCount>& failures) {
+  std::uint64_t total = 0;
+  for (const planners::FailureCount& f : failures) total += f.count;
+  return total;
+}
+
 /// Why the planner's sampled runs failed, by reason, each with its three most frequent objects:
 /// "object tilted 1523 (can3 800, can4 400, can1 300, 2 more), target moved 210 (glass)".
+
 std::string failureSummary(const std::vector<planners::FailureCount>& failures) {
   std::vector<std::string> order;  // reasons, most frequent first (failures is sorted so)
   std::map<std::string, std::uint64_t> total;
@@ -109,9 +116,16 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
     fmt::print("planner   {}\n", properties);
   }
   if (!outcome.sampledFailures.empty()) {
-    std::uint64_t failed = 0;
-    for (const planners::FailureCount& f : outcome.sampledFailures) failed += f.count;
+    const std::uint64_t failed = failureTotal(outcome.sampledFailures);
     fmt::print("failed    {} particles: {}\n", failed, failureSummary(outcome.sampledFailures));
+  }
+  // What cut the tree's candidate motions short, and how much of it the goal steering's.
+  if (!outcome.candidateFailures.empty()) {
+    fmt::print("broke     {} candidate motions stopped at a rule: {}\n",
+               failureTotal(outcome.candidateFailures), failureSummary(outcome.candidateFailures));
+    if (!outcome.steeredFailures.empty())
+      fmt::print("          {} of them steered: {}\n", failureTotal(outcome.steeredFailures),
+                 failureSummary(outcome.steeredFailures));
   }
   // A tree that hardly grows: say which rules rejected the states the planner tried.
   const auto rejections = context.rejections();

@@ -170,7 +170,11 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
         {"physics_steps", outcome.statistics.physicsSteps},
         {"planner", plannerPropertiesJson(outcome.statistics)},
         // Why the planner's particles failed, most frequent first (p-KPIECE; else empty).
-        {"sampled_failures", sampledFailuresJson(outcome.sampledFailures)}}},
+        {"sampled_failures", sampledFailuresJson(outcome.sampledFailures)},
+        // Why its candidate motions, run as planned, stopped at a broken rule, and of those
+        // the goal steering's (p-KPIECE; else empty).
+        {"candidate_failures", sampledFailuresJson(outcome.candidateFailures)},
+        {"steered_failures", sampledFailuresJson(outcome.steeredFailures)}}},
       {"timing", {{"planning_time", outcome.statistics.planningTime}}},
       {"propagation_step_size", stepSize},
       {"controls", controlsJson(outcome, stepSize, layout)},

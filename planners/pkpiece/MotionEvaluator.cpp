@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
@@ -62,8 +63,21 @@ ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion
   return job;
 }
 
-NominalRun MotionEvaluator::nominalRun(const double* start, ParticleResult&& result) const {
+std::pair<physics::Violation, std::optional<std::size_t>> MotionEvaluator::brokenRule(
+    const ParticleJob& job, const double* state) const {
+  // Judged against the job's own target reference, as the run judged it.
+  const physics::WorldValidityChecker& checker = context_.validityChecker();
+  const physics::Violation violation = checker.check(state, job.targetReference);
+  return {violation, physics::isObjectRule(violation)
+                         ? checker.offendingObject(state, job.targetReference, std::nullopt)
+                         : std::nullopt};
+}
+
+NominalRun MotionEvaluator::nominalRun(const double* start, const ParticleJob& job,
+                                       ParticleResult&& result) const {
   NominalRun run;
+  if (!result.valid && !result.end.empty())
+    std::tie(run.stoppedBy, run.stoppedOn) = brokenRule(job, result.end.data());
   run.steps = static_cast<unsigned>(result.recorded.size());
   run.states = std::move(result.recorded);
   run.end = run.states.empty() ? std::vector<double>(start, start + stateSize_) : run.states.back();
@@ -75,7 +89,8 @@ NominalRun MotionEvaluator::nominalRun(const double* start, ParticleResult&& res
 NominalRun MotionEvaluator::runNominal(const double* start, const double* control, unsigned steps,
                                        bool throughGoal) {
   const NominalMotion motion{std::vector<double>(control, control + controlSize_), steps};
-  return nominalRun(start, runner_.run(nominalJob(start, motion, throughGoal)));
+  const ParticleJob job = nominalJob(start, motion, throughGoal);
+  return nominalRun(start, job, runner_.run(job));
 }
 
 std::vector<NominalRun> MotionEvaluator::runNominals(const double* start,
@@ -86,7 +101,8 @@ std::vector<NominalRun> MotionEvaluator::runNominals(const double* start,
     jobs.push_back(nominalJob(start, motion, throughGoal));
   std::vector<ParticleResult> results = runJobs(jobs);
   std::vector<NominalRun> runs;
-  for (ParticleResult& result : results) runs.push_back(nominalRun(start, std::move(result)));
+  for (std::size_t i = 0; i < results.size(); ++i)
+    runs.push_back(nominalRun(start, jobs[i], std::move(results[i])));
   return runs;
 }
 
@@ -112,16 +128,11 @@ bool MotionEvaluator::displacementWithinLimit(const double* start, const double*
 }
 
 void MotionEvaluator::tallyLastFailure(const ParticleJob& job, const ParticleVerdict& verdict) {
-  const physics::WorldValidityChecker& checker = context_.validityChecker();
   const double* end = verdict.ends.back().data();
   if (!verdict.endValid.back()) {
-    // The run stopped at its first invalid state: the rule it broke, judged as the run judged
-    // it (against the particle's own target reference).
-    const physics::Violation violation = checker.check(end, job.targetReference);
-    failures_.addViolation(violation,
-                           physics::isObjectRule(violation)
-                               ? checker.offendingObject(end, job.targetReference, std::nullopt)
-                               : std::nullopt);
+    // The run stopped at its first invalid state: the rule it broke.
+    const auto [violation, object] = brokenRule(job, end);
+    failures_.addViolation(violation, object);
   } else if (!verdict.endInteractionOk.back()) {
     failures_.addDisplacement(*movedTooFar(job.start.data(), end));
   }

@@ -171,6 +171,8 @@ void PKpiece::clear() {
   steeredCandidates_ = 0;
   steeredValid_ = 0;
   steeredKept_ = 0;
+  candidateFailures_ = FailureTally{};
+  steeredFailures_ = FailureTally{};
   steering_.resetCount();
   bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();
@@ -304,6 +306,7 @@ std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
   candidateCount_ += motions.size();
   std::vector<Candidate> valid;
   for (std::size_t c = 0; c < motions.size(); ++c) {
+    tallyBrokenRule(runs[c], steered && c == 0);
     if (runs[c].steps == 0) continue;  // invalid from its first step
     Candidate candidate;
     candidate.control = std::move(motions[c].control);
@@ -747,6 +750,12 @@ bool PKpiece::stalled() {
   }
   if (settings_.restartAfter == 0) return false;
   return ++expansionsSinceProgress_ >= settings_.restartAfter;
+}
+
+void PKpiece::tallyBrokenRule(const NominalRun& run, bool steered) {
+  if (run.stoppedBy == physics::Violation::None) return;
+  candidateFailures_.addViolation(run.stoppedBy, run.stoppedOn);
+  if (steered) steeredFailures_.addViolation(run.stoppedBy, run.stoppedOn);
 }
 
 void PKpiece::startAfresh() {

@@ -129,8 +129,11 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
     if (name.rfind("iterations", 0) != 0)  // not all planners count them the same way
       outcome.statistics.plannerProperties.emplace_back(name.substr(0, name.find(' ')), value());
 
-  if (const auto* reporter = dynamic_cast<const FailureReporter*>(planner.get()))
+  if (const auto* reporter = dynamic_cast<const FailureReporter*>(planner.get())) {
     outcome.sampledFailures = reporter->sampledFailures();
+    outcome.candidateFailures = reporter->candidateFailures();
+    outcome.steeredFailures = reporter->steeredFailures();
+  }
 
   const auto& pdef = context.problemDefinition();
   if (pdef->hasSolution()) {

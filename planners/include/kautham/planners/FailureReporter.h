@@ -21,6 +21,11 @@ class FailureReporter {
   virtual ~FailureReporter() = default;
   /// Most frequent first.
   virtual std::vector<FailureCount> sampledFailures() const = 0;
+  /// Why candidate motions, run once as planned (nominally), stopped at a broken rule: what
+  /// cuts the tree's growth short. Most frequent first; empty if the planner does not say.
+  virtual std::vector<FailureCount> candidateFailures() const { return {}; }
+  /// Of those, the candidates the planner aimed at the goal (its goal steering).
+  virtual std::vector<FailureCount> steeredFailures() const { return {}; }
 };
 
 }  // namespace kautham::planners

@@ -54,6 +54,10 @@ struct PlanOutcome {
   /// Why the motions the planner ran in sampled worlds failed (p-KPIECE's particles), most
   /// frequent first; empty for planners that run none.
   std::vector<FailureCount> sampledFailures;
+  /// Why candidate motions, run once as planned, stopped at a broken rule (FailureReporter),
+  /// and of those the ones the planner aimed at the goal; empty for planners that do not say.
+  std::vector<FailureCount> candidateFailures;
+  std::vector<FailureCount> steeredFailures;
   PlanStatistics statistics;
   SearchTree tree;
   /// The planner's OMPL parameter set after setup, name -> value: every parameter of the

@@ -8,8 +8,8 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/UncertaintySampler.h"
+#include "kautham/planners/pkpiece/FailureTally.h"
 #include "kautham/planners/pkpiece/ObjectPoseBelief.h"
-#include "kautham/planners/pkpiece/ParticleFailures.h"
 #include "kautham/planners/pkpiece/ParticleRunner.h"
 #include "kautham/planners/pkpiece/ParticleVerdict.h"
 #include "kautham/planners/pkpiece/ParticleWorkers.h"
@@ -27,6 +27,10 @@ struct NominalRun {
   /// Steps after which it was first in the goal (0: never). Run through the goal, it goes on
   /// while it stays inside, so states goalFrom..steps are all in the goal.
   unsigned goalFrom = 0;
+  /// The rule its first invalid state broke (None: every state was valid), and the object that
+  /// broke it (none for the robot's rules).
+  physics::Violation stoppedBy = physics::Violation::None;
+  std::optional<std::size_t> stoppedOn;
 };
 
 /// A candidate's control, held for up to `steps` propagation steps.
@@ -116,7 +120,7 @@ class MotionEvaluator {
   const std::vector<std::size_t>& objectBodies() const { return objectBodies_; }
   std::uint64_t particleCount() const { return particleCount_; }
   /// Why the particles run so far failed (a diagnosis; nothing reads it back).
-  const ParticleFailures& particleFailures() const { return failures_; }
+  const FailureTally& particleFailures() const { return failures_; }
 
  private:
   Eigen::Vector3d targetPosition(const double* state) const;
@@ -127,7 +131,10 @@ class MotionEvaluator {
   void tallyLastFailure(const ParticleJob& job, const ParticleVerdict& verdict);
   /// A nominal run as a job: the mean contact parameters, the exact control, every state kept.
   ParticleJob nominalJob(const double* start, const NominalMotion& motion, bool throughGoal) const;
-  NominalRun nominalRun(const double* start, ParticleResult&& result) const;
+  NominalRun nominalRun(const double* start, const ParticleJob& job, ParticleResult&& result) const;
+  /// The rule `state` breaks, judged as `job` judged it, and the object that broke it.
+  std::pair<physics::Violation, std::optional<std::size_t>> brokenRule(const ParticleJob& job,
+                                                                       const double* state) const;
   /// Appends a particle's outcome, judged against its own start, to the verdict.
   void addOutcome(ParticleVerdict& verdict, const double* start, ParticleResult&& result) const;
   std::vector<ParticleResult> runJobs(const std::vector<ParticleJob>& jobs);
@@ -141,7 +148,7 @@ class MotionEvaluator {
   std::size_t stateSize_;
   std::size_t controlSize_;
   std::uint64_t particleCount_ = 0;
-  ParticleFailures failures_;
+  FailureTally failures_;
 };
 
 }  // namespace kautham::planners

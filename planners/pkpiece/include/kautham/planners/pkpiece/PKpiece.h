@@ -44,6 +44,12 @@ class PKpiece : public ompl::base::Planner,
   std::vector<FailureCount> sampledFailures() const override {
     return evaluator_.particleFailures().counts(context_.layout());
   }
+  std::vector<FailureCount> candidateFailures() const override {
+    return candidateFailures_.counts(context_.layout());
+  }
+  std::vector<FailureCount> steeredFailures() const override {
+    return steeredFailures_.counts(context_.layout());
+  }
   /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
   void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
 
@@ -57,6 +63,9 @@ class PKpiece : public ompl::base::Planner,
   struct Candidate;
 
   void addMotion(Motion* motion);
+  /// Adds a candidate's nominal run to candidateFailures() (and steeredFailures()) if it
+  /// stopped at a broken rule.
+  void tallyBrokenRule(const NominalRun& run, bool steered);
   /// Adds `motion` to a list of the motions nearest the goal, nearest first, kept short.
   static void keepIfNear(std::vector<Motion*>& nearest, Motion* motion);
   Motion* selectMotion();
@@ -176,6 +185,8 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t steeredCandidates_ = 0;  ///< candidates aimed by GoalSteering
   std::uint64_t steeredValid_ = 0;       ///< of those, the ones valid from their first step
   std::uint64_t steeredKept_ = 0;        ///< of those, the ones chosen
+  FailureTally candidateFailures_;       ///< candidates whose nominal run broke a rule
+  FailureTally steeredFailures_;         ///< of those, the steered ones
   std::vector<double> solutionBeliefs_;
   double solutionPathBelief_ = 1.0;
   std::optional<double> solutionConfidence_;  ///< the exact solution's estimated success

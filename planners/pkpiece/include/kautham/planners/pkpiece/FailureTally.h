@@ -12,14 +12,15 @@
 
 namespace kautham::planners {
 
-/// Why particles failed, tallied by reason and object: the first rule a particle's first
-/// invalid state broke (and the object that broke it), or that an object moved more than d.
-/// A diagnosis only: nothing in the search reads it, so it changes no plan.
-class ParticleFailures {
+/// Why motions failed, tallied by reason and object: the first rule a motion's first invalid
+/// state broke (and the object that broke it), or that an object moved more than d. p-KPIECE
+/// keeps one for its particles and one for its candidates' nominal runs. A diagnosis only:
+/// nothing in the search reads it, so it changes no plan.
+class FailureTally {
  public:
-  /// A particle stopped at an invalid state: the rule it broke and the body that broke it.
+  /// A motion stopped at an invalid state: the rule it broke and the body that broke it.
   void addViolation(physics::Violation violation, std::optional<std::size_t> body);
-  /// A valid particle moved `body` more than the interaction limit d.
+  /// A valid motion moved `body` more than the interaction limit d.
   void addDisplacement(std::size_t body);
   std::uint64_t total() const { return total_; }
   /// Most frequent first, bodies named by the layout.

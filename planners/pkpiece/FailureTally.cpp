@@ -1,20 +1,20 @@
-#include "kautham/planners/pkpiece/ParticleFailures.h"
+#include "kautham/planners/pkpiece/FailureTally.h"
 
 #include <algorithm>
 
 namespace kautham::planners {
 
-void ParticleFailures::addViolation(physics::Violation violation, std::optional<std::size_t> body) {
+void FailureTally::addViolation(physics::Violation violation, std::optional<std::size_t> body) {
   ++counts_[{violation, body}];
   ++total_;
 }
 
-void ParticleFailures::addDisplacement(std::size_t body) {
+void FailureTally::addDisplacement(std::size_t body) {
   ++counts_[{physics::Violation::None, body}];
   ++total_;
 }
 
-std::vector<FailureCount> ParticleFailures::counts(const physics::WorldLayout& layout) const {
+std::vector<FailureCount> FailureTally::counts(const physics::WorldLayout& layout) const {
   std::vector<FailureCount> result;
   for (const auto& [key, count] : counts_) {
     const auto& [violation, body] = key;
