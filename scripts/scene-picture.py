@@ -3,10 +3,17 @@
 objects (blockers, as `kautham check` counts them, in orange), the target, the pre-grasp point,
 the approach corridor and the goal's free space.
 
+With --plan PLAN.json (a plan of this problem, from `kautham plan -o`), the objects stand where
+the plan leaves them, their start poses dashed, the ones it moved more than 1 cm named, and the
+goal link's path drawn: what a plan did to the scene, at a glance.
+
 Usage: /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_20.xml -o docs/images/kuka_clutter_20.svg
+       /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_30.xml --plan out/plan.json -o out/after.svg
 Reads the blocker names from `kautham check` ($KAUTHAM or build/apps/kautham). Needs matplotlib.
 """
 import argparse
+import json
+import math
 import os
 import re
 import subprocess
@@ -16,6 +23,8 @@ import xml.etree.ElementTree as ET
 import matplotlib
 
 matplotlib.use("Agg")
+# Text stays text in the SVG: searchable, and smaller than glyphs drawn as paths.
+matplotlib.rcParams["svg.fonttype"] = "none"
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Circle, Rectangle  # noqa: E402
 
@@ -23,15 +32,39 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RADIUS = {"can": 0.033, "box": 0.03, "bottle": 0.035, "cylinder": 0.035, "slim_glass": 0.02}
 
 
+def shape(kind, x, y, r, **style):
+    return (Rectangle((x - r, y - r), 2 * r, 2 * r, **style) if kind == "box"
+            else Circle((x, y), r, **style))
+
+
 def numbers(text):
     return [float(v) for v in text.split()]
+
+
+def plan_poses(path, problem):
+    """Each object's (x, y) at the plan's end, by name, and the goal link's path; exits with a
+    message naming the file when it is not a plan of `problem`."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            plan = json.load(f)
+        names = [body["name"] for body in plan["bodies"]]
+        last = plan["frames"][-1]["poses"]
+        path_xy = [(p[0], p[1]) for p in plan["goal"]["link_path"]]
+        planned = plan["problem"]["file"]
+    except (OSError, ValueError, KeyError, IndexError, TypeError) as error:
+        sys.exit(f"scene-picture: {path}: not a plan file from `kautham plan -o` ({error})")
+    if os.path.basename(planned) != os.path.basename(problem):
+        sys.exit(f"scene-picture: {path} is a plan of {planned}, not of {problem}")
+    return {name: (pose[0], pose[1]) for name, pose in zip(names, last)}, path_xy
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("problem")
     parser.add_argument("-o", "--output", required=True)
+    parser.add_argument("--plan", help="a plan of this problem (JSON): draw the scene as it leaves it")
     args = parser.parse_args()
+    after, link_path = plan_poses(args.plan, args.problem) if args.plan else ({}, [])
     kautham = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham"))
     check = subprocess.run([kautham, "check", args.problem], capture_output=True, text=True)
     if check.returncode != 0:
@@ -67,9 +100,18 @@ def main():
             continue
         r = RADIUS.get(kind, 0.03)
         colour = "#2ca25f" if role == "target" else "#fd8d3c" if name in blockers else "#bdbdbd"
-        patch = (Rectangle((x - r, y - r), 2 * r, 2 * r, color=colour, zorder=3) if kind == "box"
-                 else Circle((x, y), r, color=colour, zorder=3))
-        ax.add_patch(patch)
+        if args.plan:
+            if name not in after:
+                sys.exit(f"scene-picture: {args.plan} has no object {name} of {args.problem}")
+            ax.add_patch(shape(kind, x, y, r, fill=False, ec="#636363", ls="--", lw=0.8, zorder=2))
+            end_x, end_y = after[name]
+            if math.hypot(end_x - x, end_y - y) > 0.01:
+                ax.annotate(name, (end_x, end_y), ha="center", va="center", fontsize=6, zorder=6)
+            x, y = end_x, end_y
+        ax.add_patch(shape(kind, x, y, r, color=colour, zorder=3))
+    if link_path:
+        ax.plot([p[0] for p in link_path], [p[1] for p in link_path], "-", color="#cb181d",
+                lw=0.8, zorder=5, label="goal link's path")
     ax.plot([gx], [gy], "k+", ms=12, zorder=5, label="pre-grasp (TCP)")
     ax.plot([], [], "o", color="#fd8d3c", label=f"blockers ({len(blockers)})")
     ax.plot([], [], "o", color="#2ca25f", label="target")
@@ -78,7 +120,8 @@ def main():
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m): the robot is at the bottom")
-    ax.set_title(os.path.basename(args.problem))
+    ax.set_title(os.path.basename(args.problem) +
+                 (f" after {os.path.basename(args.plan)} (dashed: start)" if args.plan else ""))
     ax.legend(loc="lower left", fontsize=7)
     fig.tight_layout()
     fig.savefig(args.output)
