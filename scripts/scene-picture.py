@@ -4,8 +4,9 @@ objects (blockers, as `kautham check` counts them, in orange), the target, the p
 the approach corridor and the goal's free space.
 
 With --plan PLAN.json (a plan of this problem, from `kautham plan -o`), the objects stand where
-the plan leaves them, their start poses dashed, the ones it moved more than 1 cm named, and the
-goal link's path drawn: what a plan did to the scene, at a glance.
+the plan leaves them, their start poses dashed, the ones it moved named (more than 5 mm from the
+first frame to the last, as `kautham plan`'s "moved" line counts them), and the goal link's
+path drawn: what a plan did to the scene, at a glance.
 
 Usage: /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_20.xml -o docs/images/kuka_clutter_20.svg
        /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_30.xml --plan out/plan.json -o out/after.svg
@@ -41,21 +42,42 @@ def numbers(text):
     return [float(v) for v in text.split()]
 
 
+# A plan names an object as moved beyond this (m), as `kautham plan` does.
+MOVED = 0.005
+
+
+def same_file(planned, problem, plan_path):
+    """Whether the plan's problem file (as recorded, relative to where it was planned) is
+    `problem`: the same file where both can be found, else the same name."""
+    candidates = [planned, os.path.join(os.path.dirname(plan_path), planned)]
+    found = [c for c in candidates if os.path.exists(c)]
+    if found and os.path.exists(problem):
+        return any(os.path.samefile(c, problem) for c in found)
+    return os.path.basename(planned) == os.path.basename(problem)
+
+
 def plan_poses(path, problem):
-    """Each object's (x, y) at the plan's end, by name, and the goal link's path; exits with a
-    message naming the file when it is not a plan of `problem`."""
+    """Each object's (x, y, z) in the plan's first and last frames, by name, and the goal link's
+    path; exits with a message naming the file when it is not a plan of `problem`."""
     try:
         with open(path, encoding="utf-8") as f:
             plan = json.load(f)
-        names = [body["name"] for body in plan["bodies"]]
-        last = plan["frames"][-1]["poses"]
+        bodies = [(body["name"], body["role"]) for body in plan["bodies"]]
+        frames = plan["frames"]
         path_xy = [(p[0], p[1]) for p in plan["goal"]["link_path"]]
         planned = plan["problem"]["file"]
     except (OSError, ValueError, KeyError, IndexError, TypeError) as error:
         sys.exit(f"scene-picture: {path}: not a plan file from `kautham plan -o` ({error})")
-    if os.path.basename(planned) != os.path.basename(problem):
+    if not frames:
+        sys.exit(f"scene-picture: {path} has no frames: the plan has no motion to draw")
+    if not same_file(planned, problem, path):
         sys.exit(f"scene-picture: {path} is a plan of {planned}, not of {problem}")
-    return {name: (pose[0], pose[1]) for name, pose in zip(names, last)}, path_xy
+    objects = [i for i, (_, role) in enumerate(bodies) if role in ("movable", "target")]
+
+    def at(frame):
+        return {bodies[i][0]: tuple(frame["poses"][i][:3]) for i in objects}
+
+    return at(frames[0]), at(frames[-1]), path_xy
 
 
 def main():
@@ -64,7 +86,8 @@ def main():
     parser.add_argument("-o", "--output", required=True)
     parser.add_argument("--plan", help="a plan of this problem (JSON): draw the scene as it leaves it")
     args = parser.parse_args()
-    after, link_path = plan_poses(args.plan, args.problem) if args.plan else ({}, [])
+    before, after, link_path = (plan_poses(args.plan, args.problem) if args.plan
+                                else ({}, {}, []))
     kautham = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham"))
     check = subprocess.run([kautham, "check", args.problem], capture_output=True, text=True)
     if check.returncode != 0:
@@ -90,6 +113,7 @@ def main():
                            color="#9ecae1", alpha=0.5, zorder=1, label="approach corridor"))
     ax.add_patch(Rectangle((gx - width / 2, gy + behind), width, front - behind, fill=False,
                            ec="#08519c", lw=1.5, zorder=4, label="free space at the goal"))
+    in_scene = set()
     for obstacle in root.findall("Obstacle"):
         name = obstacle.find("KauthamName").get("name")
         home = obstacle.find("Home")
@@ -100,15 +124,20 @@ def main():
             continue
         r = RADIUS.get(kind, 0.03)
         colour = "#2ca25f" if role == "target" else "#fd8d3c" if name in blockers else "#bdbdbd"
+        in_scene.add(name)
         if args.plan:
             if name not in after:
                 sys.exit(f"scene-picture: {args.plan} has no object {name} of {args.problem}")
+            x, y = before[name][0], before[name][1]
             ax.add_patch(shape(kind, x, y, r, fill=False, ec="#636363", ls="--", lw=0.8, zorder=2))
-            end_x, end_y = after[name]
-            if math.hypot(end_x - x, end_y - y) > 0.01:
-                ax.annotate(name, (end_x, end_y), ha="center", va="center", fontsize=6, zorder=6)
-            x, y = end_x, end_y
+            if math.dist(before[name], after[name]) > MOVED:
+                ax.annotate(name, after[name][:2], ha="center", va="center", fontsize=6, zorder=6)
+            x, y = after[name][0], after[name][1]
         ax.add_patch(shape(kind, x, y, r, color=colour, zorder=3))
+    unknown = sorted(set(after) - in_scene)
+    if unknown:
+        sys.exit(f"scene-picture: {args.plan} has objects {args.problem} has not: "
+                 f"{', '.join(unknown)}")
     if link_path:
         ax.plot([p[0] for p in link_path], [p[1] for p in link_path], "-", color="#cb181d",
                 lw=0.8, zorder=5, label="goal link's path")

@@ -60,15 +60,16 @@ planners::SolveHooks terminalHooks() {
   return hooks;
 }
 
+/// How many runs failed, over every reason and object.
 std::uint64_t failureTotal(const std::vector<planners::FailureCount>& failures) {
   std::uint64_t total = 0;
   for (const planners::FailureCount& f : failures) total += f.count;
   return total;
 }
 
-/// Why the planner's sampled runs failed, by reason, each with its three most frequent objects:
+/// Why the planner's runs (particles, or candidates' nominal runs) failed, by reason, each with
+/// its three most frequent objects:
 /// "object tilted 1523 (can3 800, can4 400, can1 300, 2 more), target moved 210 (glass)".
-
 std::string failureSummary(const std::vector<planners::FailureCount>& failures) {
   std::vector<std::string> order;  // reasons, most frequent first (failures is sorted so)
   std::map<std::string, std::uint64_t> total;

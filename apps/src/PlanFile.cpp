@@ -69,7 +69,7 @@ json plannerPropertiesJson(const planners::PlanStatistics& statistics) {
   return properties;
 }
 
-json sampledFailuresJson(const std::vector<planners::FailureCount>& failures) {
+json failuresJson(const std::vector<planners::FailureCount>& failures) {
   json list = json::array();
   for (const planners::FailureCount& f : failures)
     list.push_back({{"reason", f.reason}, {"object", f.object}, {"count", f.count}});
@@ -170,11 +170,11 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
         {"physics_steps", outcome.statistics.physicsSteps},
         {"planner", plannerPropertiesJson(outcome.statistics)},
         // Why the planner's particles failed, most frequent first (p-KPIECE; else empty).
-        {"sampled_failures", sampledFailuresJson(outcome.sampledFailures)},
+        {"sampled_failures", failuresJson(outcome.sampledFailures)},
         // Why its candidate motions, run as planned, stopped at a broken rule, and of those
         // the goal steering's (p-KPIECE; else empty).
-        {"candidate_failures", sampledFailuresJson(outcome.candidateFailures)},
-        {"steered_failures", sampledFailuresJson(outcome.steeredFailures)}}},
+        {"candidate_failures", failuresJson(outcome.candidateFailures)},
+        {"steered_failures", failuresJson(outcome.steeredFailures)}}},
       {"timing", {{"planning_time", outcome.statistics.planningTime}}},
       {"propagation_step_size", stepSize},
       {"controls", controlsJson(outcome, stepSize, layout)},

@@ -127,6 +127,11 @@ bool MotionEvaluator::displacementWithinLimit(const double* start, const double*
   return !movedTooFar(start, end);
 }
 
+void MotionEvaluator::resetCounts() {
+  particleCount_ = 0;
+  failures_ = FailureTally{};
+}
+
 void MotionEvaluator::tallyLastFailure(const ParticleJob& job, const ParticleVerdict& verdict) {
   const double* end = verdict.ends.back().data();
   if (!verdict.endValid.back()) {

@@ -173,6 +173,7 @@ void PKpiece::clear() {
   steeredKept_ = 0;
   candidateFailures_ = FailureTally{};
   steeredFailures_ = FailureTally{};
+  evaluator_.resetCounts();
   steering_.resetCount();
   bestGoalConfidence_ = 0.0;
   solutionBeliefs_.clear();

@@ -379,6 +379,14 @@ TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
       plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, withTwoThreads(small));
   const std::vector<FailureCount>& failures = one.outcome.sampledFailures;
   ASSERT_FALSE(failures.empty());
+  // The candidates' nominal runs go to the workers too: their tally is the same as well.
+  ASSERT_FALSE(one.outcome.candidateFailures.empty());
+  ASSERT_EQ(two.outcome.candidateFailures.size(), one.outcome.candidateFailures.size());
+  for (std::size_t i = 0; i < one.outcome.candidateFailures.size(); ++i) {
+    EXPECT_EQ(two.outcome.candidateFailures[i].reason, one.outcome.candidateFailures[i].reason);
+    EXPECT_EQ(two.outcome.candidateFailures[i].object, one.outcome.candidateFailures[i].object);
+    EXPECT_EQ(two.outcome.candidateFailures[i].count, one.outcome.candidateFailures[i].count);
+  }
   std::uint64_t failed = 0;
   for (std::size_t i = 0; i < failures.size(); ++i) {
     failed += failures[i].count;
@@ -415,6 +423,11 @@ TEST(PKpieceTest, SaysWhyItsCandidateMotionsStopped) {
   const std::vector<FailureCount>& all = run.outcome.candidateFailures;
   const std::vector<FailureCount>& steered = run.outcome.steeredFailures;
   ASSERT_FALSE(all.empty());
+  // One steered candidate is invalid from its first step (66 steered, 65 valid): at least that
+  // one is among the steered failures.
+  ASSERT_GT(std::stoull(run.property("steered_candidates")),
+            std::stoull(run.property("steered_valid")));
+  ASSERT_FALSE(steered.empty());
   std::map<std::pair<std::string, std::string>, std::uint64_t> byRule;
   std::uint64_t stopped = 0;
   for (std::size_t i = 0; i < all.size(); ++i) {
@@ -442,6 +455,8 @@ TEST(PKpieceTest, SaysWhyItsCandidateMotionsStopped) {
   EXPECT_GE(steeredStopped, std::stoull(run.property("steered_candidates")) -
                                 std::stoull(run.property("steered_valid")));
   EXPECT_LE(steeredStopped, std::stoull(run.property("steered_candidates")));
+  // Fewer stopped than ran: the tree grew from the valid ones.
+  EXPECT_LT(stopped, std::stoull(run.property("candidates")));
 }
 
 TEST(PKpieceTest, SameSeedGivesTheSamePlan) {
@@ -613,6 +628,36 @@ TEST(MotionEvaluatorTest, ARunThroughTheGoalGoesOnWhileItStaysInside) {
     ++throughGoal;
   }
   EXPECT_EQ(throughGoal, 3);
+}
+
+TEST(MotionEvaluatorTest, ANominalRunCutShortSaysWhichRuleStoppedIt) {
+  // kuka_clutter_10 from the start: random controls held for 40 steps; a run that stops before
+  // its end without reaching the goal broke a rule, and says which (an object's rule with the
+  // object). Held still for 40 steps, the arm breaks none.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_10.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  MotionEvaluator evaluator(context, 0.0);
+  const std::vector<double>& start = context.startState();
+  const std::size_t dimension = context.spaceInformation()->getControlSpace()->getDimension();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int stopped = 0;
+  for (int attempt = 0; attempt < 200 && stopped < 3; ++attempt) {
+    std::vector<double> control(dimension);
+    for (double& u : control) u = uniform(rng);
+    const NominalRun run = evaluator.runNominal(start.data(), control.data(), 40);
+    if (run.steps == 40 || run.reachedGoal) continue;
+    EXPECT_NE(run.stoppedBy, physics::Violation::None) << run.steps;
+    EXPECT_EQ(physics::isObjectRule(run.stoppedBy), run.stoppedOn.has_value())
+        << physics::toString(run.stoppedBy);
+    ++stopped;
+  }
+  EXPECT_EQ(stopped, 3);
+  const std::vector<double> still(dimension, 0.0);
+  const NominalRun held = evaluator.runNominal(start.data(), still.data(), 40);
+  EXPECT_EQ(held.steps, 40U);
+  EXPECT_EQ(held.stoppedBy, physics::Violation::None);
+  EXPECT_FALSE(held.stoppedOn.has_value());
 }
 
 }  // namespace

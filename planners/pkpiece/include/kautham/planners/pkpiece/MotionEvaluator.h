@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "kautham/physics/PlanningContext.h"
@@ -121,6 +122,8 @@ class MotionEvaluator {
   std::uint64_t particleCount() const { return particleCount_; }
   /// Why the particles run so far failed (a diagnosis; nothing reads it back).
   const FailureTally& particleFailures() const { return failures_; }
+  /// Forgets the particles run so far and their failures (the planner's clear()).
+  void resetCounts();
 
  private:
   Eigen::Vector3d targetPosition(const double* state) const;
