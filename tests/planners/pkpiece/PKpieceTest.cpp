@@ -369,6 +369,17 @@ TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {
   EXPECT_NO_THROW(solve(context, nominal));
 }
 
+/// The same reasons, objects and counts, in the same order.
+void expectSameTally(const std::vector<FailureCount>& actual,
+                     const std::vector<FailureCount>& expected) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(actual[i].reason, expected[i].reason) << i;
+    EXPECT_EQ(actual[i].object, expected[i].object) << i;
+    EXPECT_EQ(actual[i].count, expected[i].count) << i;
+  }
+}
+
 TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
   // The diagnosis behind `kautham plan`'s "failed" line: each failed particle once, under the
   // rule its first invalid state broke (named by the object that broke it), most frequent
@@ -381,12 +392,7 @@ TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
   ASSERT_FALSE(failures.empty());
   // The candidates' nominal runs go to the workers too: their tally is the same as well.
   ASSERT_FALSE(one.outcome.candidateFailures.empty());
-  ASSERT_EQ(two.outcome.candidateFailures.size(), one.outcome.candidateFailures.size());
-  for (std::size_t i = 0; i < one.outcome.candidateFailures.size(); ++i) {
-    EXPECT_EQ(two.outcome.candidateFailures[i].reason, one.outcome.candidateFailures[i].reason);
-    EXPECT_EQ(two.outcome.candidateFailures[i].object, one.outcome.candidateFailures[i].object);
-    EXPECT_EQ(two.outcome.candidateFailures[i].count, one.outcome.candidateFailures[i].count);
-  }
+  expectSameTally(two.outcome.candidateFailures, one.outcome.candidateFailures);
   std::uint64_t failed = 0;
   for (std::size_t i = 0; i < failures.size(); ++i) {
     failed += failures[i].count;
@@ -402,12 +408,7 @@ TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
     }
   }
   EXPECT_LE(failed, std::stoull(one.property("particles")));
-  ASSERT_EQ(two.outcome.sampledFailures.size(), failures.size());
-  for (std::size_t i = 0; i < failures.size(); ++i) {
-    EXPECT_EQ(two.outcome.sampledFailures[i].reason, failures[i].reason);
-    EXPECT_EQ(two.outcome.sampledFailures[i].object, failures[i].object);
-    EXPECT_EQ(two.outcome.sampledFailures[i].count, failures[i].count);
-  }
+  expectSameTally(two.outcome.sampledFailures, failures);
   // Without uncertainty no particle runs, and none fails.
   const PlanRun nominal =
       plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, {{"uncertainty", "0"}});
