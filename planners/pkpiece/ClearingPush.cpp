@@ -35,6 +35,9 @@ constexpr double kFootprint = 0.12;  // m
 // A stand-off whose footprint passes nearer than this to another object's centre has no room:
 // a can's radius (3.3 cm) and a margin.
 constexpr double kCrowdedRoom = 0.06;  // m
+// A gripper lowered to slide into a crowded stand-off lands where no object's centre is nearer
+// than this to it (its whole width over the table): a can's radius (3.3 cm) and a margin.
+constexpr double kLandingClear = 0.04;  // m
 // Margin above the workspace floor (the goal link may not leave the workspace).
 constexpr double kFloorMargin = 0.012;  // m
 // What a push still to come after the current one adds to the remaining length: more than
@@ -45,7 +48,11 @@ constexpr double kLaterPush = 0.5;  // m
 
 ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSettings& settings,
                            const GoalEnd* end)
-    : context_(context), behind_(settings.behind), belowCentre_(settings.belowCentre), end_(end) {
+    : context_(context),
+      behind_(settings.behind),
+      belowCentre_(settings.belowCentre),
+      slide_(settings.crowdedSlide),
+      end_(end) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
@@ -188,14 +195,22 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
 
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const double along = (link - object).dot(direction);
+  const double pushLength = (end - start).norm();
   if (along <= 0.0 && onLine(link, object))
     return Step{end, posture.orientation, (end - link).norm() + endToGoal, true};
+  // Low behind a crowded stand-off: slide in at the push's speed, the objects in the way slide.
+  if (sliding(link, start))
+    return Step{start, posture.orientation, (start - link).norm() + pushLength + endToGoal, true};
+  Eigen::Vector3d lowered = start;
+  if (slide_ > 0.0 && room(state, start, blocker, posture.reach) < kCrowdedRoom)
+    lowered = landing(state, start, blocker, posture);
+  const double slideLength = (start - lowered).norm();
   // To the stand-off over the cans, from above it (high enough to pass over them); from a push
   // that ended low, up first: a straight move from there to the next stand-off sweeps through
   // the tops of the cans between (it tipped can1 on kuka_clutter_20, on the way from can3's
   // push to can1's).
   const Transfer transfer =
-      transferOver(link, start, std::max(start.z() + kAbove, travelHeight_), kOnLine, kOnLine);
+      transferOver(link, lowered, std::max(start.z() + kAbove, travelHeight_), kOnLine, kOnLine);
   // On the way up from a push the gripper keeps the posture it pushed with: turned low, next to
   // the cans it had pushed, the gripper swept one (yumi_clutter_30, can3, turning from the
   // corridor's steep push to the free space's level one).
@@ -205,7 +220,47 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
     held = &nearer(pitch, nearer(pitch, push_, corridor_), crowded_);
   }
   return Step{transfer.waypoint, held->orientation,
-              transfer.length + (end - start).norm() + endToGoal, false};
+              transfer.length + slideLength + pushLength + endToGoal, false};
+}
+
+Eigen::Vector3d ClearingPush::landing(const double* state, const Eigen::Vector3d& start,
+                                      std::size_t blocker, const Posture& posture) const {
+  constexpr double kFirst = 0.03, kStep = 0.01;  // m
+  Eigen::Vector3d roomiest = start;
+  double most = -std::numeric_limits<double>::infinity();
+  for (double back = kFirst; back <= slide_ + 1e-9; back += kStep) {
+    const Eigen::Vector3d point = start + back * back_;
+    const double here = landingRoom(state, point, blocker, posture.reach);
+    if (here >= kLandingClear) return point;
+    if (here > most) {
+      most = here;
+      roomiest = point;
+    }
+  }
+  return roomiest;
+}
+
+double ClearingPush::landingRoom(const double* state, const Eigen::Vector3d& point,
+                                 std::size_t blocker, double reach) const {
+  double nearest = std::numeric_limits<double>::infinity();
+  const auto& bodies = context_.layout().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    if (b == blocker || bodies[b].role == physics::BodyRole::Robot) continue;
+    const Eigen::Vector3d from = physics::WorldLayout::position(state, b) - point;
+    // Outside the gripper's rectangle over the table: across it, and before or behind it.
+    const double across = std::max(std::abs(from.dot(across_)) - halfWidth_, 0.0);
+    const double along = std::max({-from.dot(back_), 0.0, from.dot(back_) - reach});
+    nearest = std::min(nearest, std::hypot(across, along));
+  }
+  return nearest;
+}
+
+bool ClearingPush::sliding(const Eigen::Vector3d& link, const Eigen::Vector3d& start) const {
+  if (slide_ <= 0.0 || link.z() > start.z() + kOnLine) return false;
+  const Eigen::Vector2d from = start.head<2>() + slide_ * back_.head<2>();
+  return core::distanceToSegment<Eigen::Vector2d>(link.head<2>(), from, start.head<2>()) <=
+             kOnLine &&
+         (link - start).dot(back_) > kOnLine;
 }
 
 Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target, double height,

@@ -41,6 +41,10 @@ struct PushSettings {
   /// its own pitch, if that leaves more room (the footprint is shorter as it points down); at
   /// or below the push's own pitch (the default 0): never.
   double crowdedPitch = 0.0;
+  /// m back along the approach from a stand-off with no room (at the posture pushed with) the
+  /// gripper may be lowered, where its footprint has room, to slide forward into the stand-off
+  /// at the push's height; 0: lowered onto the stand-off.
+  double crowdedSlide = 0.0;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -65,7 +69,10 @@ struct PushSettings {
 ///
 /// Where neither stand-off leaves the gripper's footprint room (it reaches 12 cm back held
 /// level, less as it points down), the push goes pitched down by `crowdedPitch` instead, if that
-/// leaves more: the dense scenes' corridors hold cans 1-2 cm apart.
+/// leaves more: the dense scenes' corridors hold cans 1-2 cm apart. With `crowdedSlide`, a
+/// stand-off still without room is reached low from behind instead of from above: lowered onto
+/// it, the fingers land on the neighbouring can's top and tip it; moved in at the push's height
+/// they meet it low, where a can slides.
 ///
 /// The waypoints follow the object as it moves, so a push in progress goes on until the
 /// object leaves the free space (or the corridor). `remaining` is the length of the rest of
@@ -127,6 +134,17 @@ class ClearingPush {
   static const Posture& nearer(double pitch, const Posture& a, const Posture& b);
   /// Whether `link` is on the line of a push through `aim` (across the approach).
   bool onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const;
+  /// Where the gripper is lowered to slide into the crowded stand-off `start`: the nearest point
+  /// behind it (along back_, up to slide_) where the gripper has room over its whole width, or
+  /// the roomiest.
+  Eigen::Vector3d landing(const double* state, const Eigen::Vector3d& start, std::size_t blocker,
+                          const Posture& posture) const;
+  /// How near the gripper over the table at `point` (as wide as the free space, reaching `reach`
+  /// back) the other objects' centres stand.
+  double landingRoom(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
+                     double reach) const;
+  /// Whether `link` is low on the slide into `start` (within kOnLine of the line back from it).
+  bool sliding(const Eigen::Vector3d& link, const Eigen::Vector3d& start) const;
   /// How near the stand-off at `point` (and the footprint `reach` behind it) the other objects
   /// stand.
   double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
@@ -151,6 +169,7 @@ class ClearingPush {
   std::vector<Footprint> footprints_;
   double behind_ = 0.0;
   double belowCentre_ = 0.0;
+  double slide_ = 0.0;  ///< PushSettings::crowdedSlide
   const GoalEnd* end_ = nullptr;
 };
 
