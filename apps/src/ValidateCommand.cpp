@@ -273,6 +273,19 @@ std::string describeOffenders(const std::map<std::string, std::size_t>& offender
   return text + " (the object that broke the rule)";
 }
 
+/// "the free space not clear in 30: can1 in 20, can21 in 12": of the runs that ended within
+/// the goal's tolerance, how many had objects between the fingers, and which, most often first.
+std::string describeBlockedFreeSpace(std::size_t runs,
+                                     const std::map<std::string, std::size_t>& objects) {
+  std::vector<std::pair<std::string, std::size_t>> sorted(objects.begin(), objects.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string byObject;
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    byObject += fmt::format("{}{} in {}", i ? ", " : "", sorted[i].first, sorted[i].second);
+  return fmt::format("the free space not clear in {}: {}", runs, byObject);
+}
+
 std::string describeUncertainty(const core::Problem& problem,
                                 const physics::UncertaintySampler& sampler) {
   if (!sampler.hasUncertainty()) return "none (every standard deviation is zero)";
@@ -351,6 +364,10 @@ int runValidate(const ValidateOptions& options) {
   std::map<Failure, std::size_t> failures;
   std::map<physics::Violation, std::size_t> violations;
   std::map<std::string, std::size_t> offenders;  ///< runs in which each object broke a rule
+  /// Valid runs that ended within the goal's tolerance, missing it only because the free
+  /// space between the fingers was not clear; and in how many of them each object was there.
+  std::size_t runsWithFreeSpaceNotClear = 0;
+  std::map<std::string, std::size_t> leftInFreeSpace;
   double distanceSum = 0.0;
   json perRun = json::array();
   for (std::size_t run = 0; run < options.runs; ++run) {
@@ -366,6 +383,11 @@ int runValidate(const ValidateOptions& options) {
       const std::string& name = context.layout().bodies[*r.offendingObject].name;
       runJson["object"] = name;
       ++offenders[name];
+    }
+    if (!r.leftInFreeSpace.empty()) {
+      runJson["left_in_free_space"] = r.leftInFreeSpace;
+      ++runsWithFreeSpaceNotClear;
+      for (const std::string& name : r.leftInFreeSpace) ++leftInFreeSpace[name];
     }
     perRun.push_back(std::move(runJson));
     if (r.reachedGoal) {
@@ -403,6 +425,8 @@ int runValidate(const ValidateOptions& options) {
     for (const auto& [violation, count] : violations)
       if (classify(violation) == f)
         detail += fmt::format(", {} {}", physics::toString(violation), count);
+    if (f == Failure::GoalMissed && !leftInFreeSpace.empty())
+      detail += ", " + describeBlockedFreeSpace(runsWithFreeSpaceNotClear, leftInFreeSpace);
     fmt::print("  {:<22} {:>6}{}\n", label(f), failures[f],
                detail.empty() ? "" : " (" + detail.substr(2) + ")");
   }
@@ -433,6 +457,8 @@ int runValidate(const ValidateOptions& options) {
          {{"method", "wilson"}, {"level", 0.95}, {"low", ci.low}, {"high", ci.high}}},
         {"failures", byReason},
         {"violations", byViolation},
+        {"free_space_not_clear",
+         {{"runs", runsWithFreeSpaceNotClear}, {"by_object", leftInFreeSpace}}},
         {"mean_final_goal_distance", distanceSum / static_cast<double>(options.runs)},
         {"redrawn_starts", rejectedStarts},
         {"results", perRun},

@@ -119,6 +119,9 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
   result.finalGoalDistance = goal->distance(result.finalState.data());
   result.reachedGoal =
       result.firstViolation == Violation::None && goal->reached(result.finalState.data());
+  if (!result.reachedGoal && result.firstViolation == Violation::None &&
+      result.finalGoalDistance <= goal->spec().tolerance)
+    result.leftInFreeSpace = goal->freeSpaceOccupants(result.finalState.data());
   return result;
 }
 

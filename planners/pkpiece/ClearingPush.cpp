@@ -201,9 +201,7 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   // Low behind a crowded stand-off: slide in at the push's speed, the objects in the way slide.
   if (sliding(link, start))
     return Step{start, posture.orientation, (start - link).norm() + pushLength + endToGoal, true};
-  Eigen::Vector3d lowered = start;
-  if (slide_ > 0.0 && room(state, start, blocker, posture.reach) < kCrowdedRoom)
-    lowered = landing(state, start, blocker, posture);
+  const Eigen::Vector3d lowered = slide_ > 0.0 ? landing(state, start, blocker, posture) : start;
   const double slideLength = (start - lowered).norm();
   // To the stand-off over the cans, from above it (high enough to pass over them); from a push
   // that ended low, up first: a straight move from there to the next stand-off sweeps through
@@ -225,10 +223,10 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
 
 Eigen::Vector3d ClearingPush::landing(const double* state, const Eigen::Vector3d& start,
                                       std::size_t blocker, const Posture& posture) const {
-  constexpr double kFirst = 0.03, kStep = 0.01;  // m
+  constexpr double kStep = 0.01;  // m
   Eigen::Vector3d roomiest = start;
   double most = -std::numeric_limits<double>::infinity();
-  for (double back = kFirst; back <= slide_ + 1e-9; back += kStep) {
+  for (double back = 0.0; back <= slide_ + 1e-9; back += kStep) {
     const Eigen::Vector3d point = start + back * back_;
     const double here = landingRoom(state, point, blocker, posture.reach);
     if (here >= kLandingClear) return point;

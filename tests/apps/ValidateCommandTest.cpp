@@ -258,6 +258,50 @@ TEST_F(ValidateCommandTest, APlanMadeInOtherPhysicsIsExecutedInThem) {
       << refused.output;
 }
 
+TEST_F(ValidateCommandTest, SaysWhichObjectsLeftTheFreeSpaceBetweenTheFingersNotClear) {
+  // kuka_clutter_5's plan (pKP, seed 1) executed where one more can stands beside the
+  // pre-grasp, 0.7 mm outside the free space between the fingers (where kuka_clutter_30's can23
+  // stands). The plan never goes near it, but the sampled start poses (5 mm) put it inside in
+  // some runs: they end with the gripper at the goal and the pre-grasp not clear, and say so.
+  const fs::path kukaPlan = folder / "kuka.json";
+  ASSERT_EQ(kautham("plan problems/kuka_clutter_5.xml --seed 1 --set uncertainty=0 -o " +
+                    quoted(kukaPlan))
+                .exitCode,
+            0);
+  std::string scene = test::readFile(fs::path(KAUTHAM_SOURCE_DIR) / "problems/kuka_clutter_5.xml");
+  const std::string beside =
+      "  <Obstacle obstacle=\"objects/can.urdf\" role=\"movable\">\n"
+      "    <KauthamName name=\"can9\"/>\n"
+      "    <Home X=\"-0.0937\" Y=\"0.2336\" Z=\"0.811\"/>\n"
+      "  </Obstacle>\n";
+  const auto at = scene.find("  <Obstacle obstacle=\"objects/can.urdf\"");
+  ASSERT_NE(at, std::string::npos);
+  scene.insert(at, beside);
+  const fs::path problem = folder / "kuka_clutter_5_beside.xml";
+  test::writeFile(problem, scene);
+  const fs::path json = folder / "beside.json";
+  const CommandRun run = kautham("validate " + quoted(problem) + " " + quoted(kukaPlan) +
+                                 " --runs 20 --model-dir models --json " + quoted(json));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const nlohmann::json report = readJson(json);
+  const int notClear = report["free_space_not_clear"]["runs"];
+  EXPECT_GT(notClear, 0) << run.output;
+  EXPECT_LE(notClear, report["failures"]["goal_missed"].get<int>());
+  EXPECT_EQ(report["free_space_not_clear"]["by_object"], (nlohmann::json{{"can9", notClear}}));
+  EXPECT_NE(run.output.find("the free space not clear in " + std::to_string(notClear) +
+                            ": can9 in " + std::to_string(notClear)),
+            std::string::npos)
+      << run.output;
+  int listed = 0;
+  for (const auto& r : report["results"])
+    if (r.contains("left_in_free_space")) {
+      EXPECT_EQ(r["left_in_free_space"], nlohmann::json::array({"can9"}));
+      EXPECT_FALSE(r["reached_goal"].get<bool>());
+      ++listed;
+    }
+  EXPECT_EQ(listed, notClear);
+}
+
 TEST_F(ValidateCommandTest, BadArgumentsExitTwo) {
   EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml no/such/plan.json --runs 2").exitCode, 2);
   EXPECT_EQ(kautham("validate problems/pusher_cans_5.xml " + quoted(plan()) + " --runs 0").exitCode,

@@ -300,6 +300,73 @@ TEST(ClearingPushTest, AStandOffWithNoRoomForTheLevelGripperIsReachedPitchedDown
   EXPECT_FALSE(crowded.context.goal().freeSpaceBlocker(cleared.end.data()).has_value());
 }
 
+/// kuka_clutter_30 as its file sets the push (the defaults' pitches and corridor, pushing at
+/// 0.2 m/s and moving at 0.5 m/s between pushes), with `slide` (PushSettings::crowdedSlide),
+/// steered in the real physics along the clearing's waypoints until can3, the corridor's first
+/// blocker, has left the corridor (at most 24 motions): whether a motion broke a rule on the way,
+/// and whether can3 left.
+struct Can3Cleared {
+  bool brokeARule = false;
+  bool left = false;
+};
+
+Can3Cleared steerCan3OutOfTheCorridor(double slide) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_30.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  const PushSettings push{kPitch, 0.2, 1.2, 0.015, 0.2, 0.0, slide};
+  MotionEvaluator evaluator(context, 0.0);
+  const GoalSteering steering(context, evaluator, true, push, true,
+                              ApproachSettings{0.05, 0.2, 0.0, 0.0075, 0.5});
+  const ClearingPush clearing(context, push);
+  const auto& bodies = context.layout().bodies;
+  const auto isCan3 = [&](std::optional<std::size_t> body) {
+    return body && bodies[*body].name == "can3";
+  };
+  std::vector<double> state = context.startState();
+  Can3Cleared result;
+  for (int motion = 0; motion < 24 && isCan3(clearing.corridorBlocker(state.data())); ++motion) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
+    if (!steered) return result;
+    const NominalRun run =
+        evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
+    state = run.end;
+    if (run.steps < steered->steps) {
+      result.brokeARule = true;
+      return result;
+    }
+  }
+  result.left = !isCan3(clearing.corridorBlocker(state.data()));
+  return result;
+}
+
+TEST(ClearingPushTest, ACrowdedStandOffIsReachedLowFromBehind) {
+  // kuka_clutter_30: can3 stands in the corridor 1.7 cm from can21 on one side and 2.1 cm from
+  // can6 on the other; the gripper (12 cm wide over the table) has no room beside it. Lowered
+  // onto the stand-off, the fingers land on can21's top and tilt it past the scene's limit.
+  // With crowded_slide 0.1 the gripper is lowered 10 cm further back, the roomiest point within
+  // reach (can7's centre 3.7 cm from its outline there, clear of a can's 3.3 cm radius), and
+  // slid in at the push's height; it meets can21 low, where a can slides: can3 leaves the
+  // corridor, every motion valid.
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_30.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  const std::vector<double>& start = context.startState();
+  const Eigen::Vector3d above =
+      ClearingPush(context, PushSettings{kPitch, 0.2, 1.2}).next(start.data())->waypoint;
+  const Eigen::Vector3d aboveLanding =
+      ClearingPush(context, PushSettings{kPitch, 0.2, 1.2, 0.015, 0.1, 0.0, 0.1})
+          .next(start.data())
+          ->waypoint;
+  // The approach is +y: the landing lies back along -y from the stand-off, across it the same.
+  EXPECT_NEAR(aboveLanding.x(), above.x(), 1e-9);
+  EXPECT_NEAR(aboveLanding.y(), above.y() - 0.10, 1e-9);
+
+  const Can3Cleared lowered = steerCan3OutOfTheCorridor(0.0);
+  EXPECT_TRUE(lowered.brokeARule);
+  const Can3Cleared slid = steerCan3OutOfTheCorridor(0.1);
+  EXPECT_FALSE(slid.brokeARule);
+  EXPECT_TRUE(slid.left);
+}
+
 TEST(GoalSteeringTest, AfterASteepPushTheGripperRisesBeforeItTurns) {
   // yumi_clutter_30 cleared with pushes pitched 1.2 rad: the last push ends with the fingertips
   // 1.2 cm above the workspace's floor. Steered straight at the goal from there, turning to the

@@ -134,9 +134,9 @@ class ClearingPush {
   static const Posture& nearer(double pitch, const Posture& a, const Posture& b);
   /// Whether `link` is on the line of a push through `aim` (across the approach).
   bool onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const;
-  /// Where the gripper is lowered to slide into the crowded stand-off `start`: the nearest point
-  /// behind it (along back_, up to slide_) where the gripper has room over its whole width, or
-  /// the roomiest.
+  /// Where the gripper is lowered to slide into the stand-off `start`: the nearest point from it
+  /// back (along back_, up to slide_) where the gripper has room over its whole width (`start`
+  /// itself if it has), or the roomiest.
   Eigen::Vector3d landing(const double* state, const Eigen::Vector3d& start, std::size_t blocker,
                           const Posture& posture) const;
   /// How near the gripper over the table at `point` (as wide as the free space, reaching `reach`
