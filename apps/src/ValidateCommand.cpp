@@ -261,11 +261,18 @@ std::size_t findQuery(const core::Problem& problem, const std::string& name,
                            problem.file.filename().string() + " does not have");
 }
 
-/// "can3 in 5 runs, cylinder in 2, ...": which objects broke a rule, most often first.
-std::string describeOffenders(const std::map<std::string, std::size_t>& offenders) {
-  std::vector<std::pair<std::string, std::size_t>> sorted(offenders.begin(), offenders.end());
+/// Names and counts, the most counted first (by name among equals).
+std::vector<std::pair<std::string, std::size_t>> mostCountedFirst(
+    const std::map<std::string, std::size_t>& counts) {
+  std::vector<std::pair<std::string, std::size_t>> sorted(counts.begin(), counts.end());
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });
+  return sorted;
+}
+
+/// "can3 in 5 runs, cylinder in 2, ...": which objects broke a rule, most often first.
+std::string describeOffenders(const std::map<std::string, std::size_t>& offenders) {
+  const auto sorted = mostCountedFirst(offenders);
   std::string text;
   for (std::size_t i = 0; i < sorted.size(); ++i)
     text += fmt::format("{}{} in {}{}", i ? ", " : "", sorted[i].first, sorted[i].second,
@@ -273,17 +280,16 @@ std::string describeOffenders(const std::map<std::string, std::size_t>& offender
   return text + " (the object that broke the rule)";
 }
 
-/// "the free space not clear in 30: can1 in 20, can21 in 12": of the runs that ended within
-/// the goal's tolerance, how many had objects between the fingers, and which, most often first.
+/// "the free space not clear in 30 runs: can1 in 20, can21 in 12": of the runs that ended with
+/// the gripper where the goal asks, how many had objects between the fingers, and which, most
+/// often first.
 std::string describeBlockedFreeSpace(std::size_t runs,
                                      const std::map<std::string, std::size_t>& objects) {
-  std::vector<std::pair<std::string, std::size_t>> sorted(objects.begin(), objects.end());
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  const auto sorted = mostCountedFirst(objects);
   std::string byObject;
   for (std::size_t i = 0; i < sorted.size(); ++i)
     byObject += fmt::format("{}{} in {}", i ? ", " : "", sorted[i].first, sorted[i].second);
-  return fmt::format("the free space not clear in {}: {}", runs, byObject);
+  return fmt::format("the free space not clear in {} runs: {}", runs, byObject);
 }
 
 std::string describeUncertainty(const core::Problem& problem,
@@ -364,8 +370,8 @@ int runValidate(const ValidateOptions& options) {
   std::map<Failure, std::size_t> failures;
   std::map<physics::Violation, std::size_t> violations;
   std::map<std::string, std::size_t> offenders;  ///< runs in which each object broke a rule
-  /// Valid runs that ended within the goal's tolerance, missing it only because the free
-  /// space between the fingers was not clear; and in how many of them each object was there.
+  /// Valid runs that ended with the gripper where the goal asks, missing it only because the
+  /// free space between the fingers was not clear; and in how many of them each object was.
   std::size_t runsWithFreeSpaceNotClear = 0;
   std::map<std::string, std::size_t> leftInFreeSpace;
   double distanceSum = 0.0;

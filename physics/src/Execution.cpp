@@ -120,7 +120,7 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
   result.reachedGoal =
       result.firstViolation == Violation::None && goal->reached(result.finalState.data());
   if (!result.reachedGoal && result.firstViolation == Violation::None &&
-      result.finalGoalDistance <= goal->spec().tolerance)
+      goal->poseReached(result.finalState.data()))
     result.leftInFreeSpace = goal->freeSpaceOccupants(result.finalState.data());
   return result;
 }

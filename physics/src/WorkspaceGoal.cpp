@@ -85,9 +85,14 @@ double WorkspaceGoal::freeSpaceFilledAt(const double* state,
 bool WorkspaceGoal::reached(const double* state) const {
   if (!spec_.joints.empty()) return jointError(state) <= spec_.jointTolerance;
   // The free space is looked at last: it is the only costly test.
+  return poseReached(state) && freeSpaceOccupants(state).empty();
+}
+
+bool WorkspaceGoal::poseReached(const double* state) const {
+  if (!spec_.joints.empty()) return jointError(state) <= spec_.jointTolerance;
   return positionError(state) <= spec_.tolerance &&
          approachError(state) <= spec_.approachTolerance &&
-         levelError(state) <= spec_.approachTolerance && freeSpaceOccupants(state).empty();
+         levelError(state) <= spec_.approachTolerance;
 }
 
 double WorkspaceGoal::levelError(const double* state) const {

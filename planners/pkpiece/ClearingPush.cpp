@@ -198,12 +198,15 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const double pushLength = (end - start).norm();
   if (along <= 0.0 && onLine(link, object))
     return Step{end, posture.orientation, (end - link).norm() + endToGoal, true};
-  // Low behind a crowded stand-off: slide in at the push's speed, the objects in the way slide.
+  // Low behind the stand-off (within slide_): slide in at the push's speed, the objects in the
+  // way slide. Judged on the whole slide_, not on the landing: the landing moves as the slide
+  // pushes the cans aside, and a slide cut short by the room it made would rise and start over.
   if (sliding(link, start))
     return Step{start, posture.orientation, (start - link).norm() + pushLength + endToGoal, true};
   const Eigen::Vector3d lowered = slide_ > 0.0 ? landing(state, start, blocker, posture) : start;
   const double slideLength = (start - lowered).norm();
-  // To the stand-off over the cans, from above it (high enough to pass over them); from a push
+  // To the stand-off (or the landing behind it) over the cans, from above it (high enough to
+  // pass over them); from a push
   // that ended low, up first: a straight move from there to the next stand-off sweeps through
   // the tops of the cans between (it tipped can1 on kuka_clutter_20, on the way from can3's
   // push to can1's).

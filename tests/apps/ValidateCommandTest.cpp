@@ -289,7 +289,7 @@ TEST_F(ValidateCommandTest, SaysWhichObjectsLeftTheFreeSpaceBetweenTheFingersNot
   EXPECT_LE(notClear, report["failures"]["goal_missed"].get<int>());
   EXPECT_EQ(report["free_space_not_clear"]["by_object"], (nlohmann::json{{"can9", notClear}}));
   EXPECT_NE(run.output.find("the free space not clear in " + std::to_string(notClear) +
-                            ": can9 in " + std::to_string(notClear)),
+                            " runs: can9 in " + std::to_string(notClear)),
             std::string::npos)
       << run.output;
   int listed = 0;
@@ -297,6 +297,8 @@ TEST_F(ValidateCommandTest, SaysWhichObjectsLeftTheFreeSpaceBetweenTheFingersNot
     if (r.contains("left_in_free_space")) {
       EXPECT_EQ(r["left_in_free_space"], nlohmann::json::array({"can9"}));
       EXPECT_FALSE(r["reached_goal"].get<bool>());
+      EXPECT_EQ(r["violation"], "none");
+      EXPECT_LE(r["final_goal_distance"].get<double>(), 0.02);  // the goal's tolerance
       ++listed;
     }
   EXPECT_EQ(listed, notClear);

@@ -307,6 +307,9 @@ TEST(ClearingPushTest, AStandOffWithNoRoomForTheLevelGripperIsReachedPitchedDown
 /// and whether can3 left.
 struct Can3Cleared {
   bool brokeARule = false;
+  physics::Violation rule = physics::Violation::None;  ///< the rule broken, if one was
+  std::string brokenBy;                                ///< the object that broke it
+  double mostTilted = 0.0;  ///< degrees, the largest tilt of any can at any step on the way
   bool left = false;
 };
 
@@ -330,8 +333,18 @@ Can3Cleared steerCan3OutOfTheCorridor(double slide) {
     const NominalRun run =
         evaluator.runNominal(state.data(), steered->control.data(), steered->steps, false);
     state = run.end;
+    for (const std::vector<double>& s : run.states)
+      for (std::size_t b = 0; b < bodies.size(); ++b)
+        if (bodies[b].role == physics::BodyRole::Movable) {
+          const double up =
+              (physics::WorldLayout::orientation(s.data(), b) * Eigen::Vector3d::UnitZ()).z();
+          result.mostTilted =
+              std::max(result.mostTilted, std::acos(std::min(1.0, up)) * 180.0 / M_PI);
+        }
     if (run.steps < steered->steps) {
       result.brokeARule = true;
+      result.rule = run.stoppedBy;
+      if (run.stoppedOn) result.brokenBy = bodies[*run.stoppedOn].name;
       return result;
     }
   }
@@ -362,9 +375,13 @@ TEST(ClearingPushTest, ACrowdedStandOffIsReachedLowFromBehind) {
 
   const Can3Cleared lowered = steerCan3OutOfTheCorridor(0.0);
   EXPECT_TRUE(lowered.brokeARule);
+  EXPECT_EQ(lowered.rule, physics::Violation::ObjectTilted);
+  EXPECT_EQ(lowered.brokenBy, "can21");
+  EXPECT_GT(lowered.mostTilted, 15.0);
   const Can3Cleared slid = steerCan3OutOfTheCorridor(0.1);
-  EXPECT_FALSE(slid.brokeARule);
+  EXPECT_FALSE(slid.brokeARule) << physics::toString(slid.rule) << " on " << slid.brokenBy;
   EXPECT_TRUE(slid.left);
+  EXPECT_LT(slid.mostTilted, 10.0);
 }
 
 TEST(GoalSteeringTest, AfterASteepPushTheGripperRisesBeforeItTurns) {

@@ -22,8 +22,9 @@ struct ExecutionResult {
   std::vector<double> finalState;  ///< the state at the end (or at the violation)
   /// The object that broke the rule (a layout body), when an object did
   std::optional<std::size_t> offendingObject;
-  /// A valid run that ended with the gripper within the goal's tolerance but missed it: the
-  /// movable objects in the free space between its fingers (the pre-grasp is not clear).
+  /// A valid run that ended with the gripper where the goal asks, turned as it asks, but missed
+  /// it: the movable objects in the free space between its fingers (WorkspaceGoal::poseReached;
+  /// the pre-grasp is not clear).
   std::vector<std::string> leftInFreeSpace;
   ContactParameters contact;       ///< the contact parameters of the run
   std::size_t rejectedStarts = 0;  ///< sampled starts redrawn because things interpenetrated

@@ -56,6 +56,8 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
   /// The goal link at the goal point, turned as the approach and level axis ask.
   const Eigen::Isometry3d& nominalGoalPose() const { return nominalGoalPose_; }
   bool reached(const double* state) const;
+  /// reached() but for the free space: the gripper is where the goal asks, turned as it asks.
+  bool poseReached(const double* state) const;
   /// Angle between the goal link's +z axis and the approach direction (0 without one).
   double approachError(const double* state) const;
   /// Angle between the level axis and the horizontal plane (0 without one).

@@ -28,7 +28,7 @@ Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target
 double pitchBelowLevel(const Eigen::Matrix3d& turn);
 
 /// How the clearing push is done: p-KPIECE's push_pitch, clear_behind, corridor_pitch,
-/// push_below_centre and push_speed parameters.
+/// push_below_centre, push_speed, crowded_pitch and crowded_slide parameters.
 struct PushSettings {
   double pitch = 0.0;          ///< rad the gripper points down on the way to and during a push
   double behind = 0.0;         ///< m behind the goal point the corridor is cleared (0: not)
@@ -41,9 +41,10 @@ struct PushSettings {
   /// its own pitch, if that leaves more room (the footprint is shorter as it points down); at
   /// or below the push's own pitch (the default 0): never.
   double crowdedPitch = 0.0;
-  /// m back along the approach from a stand-off with no room (at the posture pushed with) the
-  /// gripper may be lowered, where its footprint has room, to slide forward into the stand-off
-  /// at the push's height; 0: lowered onto the stand-off.
+  /// m back along the approach from a stand-off without room for the whole gripper the gripper
+  /// may be lowered (the nearest point with room, else the roomiest), to slide forward into the
+  /// stand-off at the push's height; a gripper already low within this behind a stand-off
+  /// slides in too. 0: lowered onto the stand-off.
   double crowdedSlide = 0.0;
 };
 
@@ -70,9 +71,11 @@ struct PushSettings {
 /// Where neither stand-off leaves the gripper's footprint room (it reaches 12 cm back held
 /// level, less as it points down), the push goes pitched down by `crowdedPitch` instead, if that
 /// leaves more: the dense scenes' corridors hold cans 1-2 cm apart. With `crowdedSlide`, a
-/// stand-off still without room is reached low from behind instead of from above: lowered onto
-/// it, the fingers land on the neighbouring can's top and tip it; moved in at the push's height
-/// they meet it low, where a can slides.
+/// stand-off without room for the whole gripper (as wide as the free space) is reached low from
+/// behind instead of from above: lowered onto it, the fingers land on the neighbouring can's top
+/// and tip it; moved in at the push's height they meet it low, where a can slides. A gripper
+/// already low behind a stand-off, within `crowdedSlide`, slides in whatever the room: a slide
+/// goes on when the cans it moves make room at the stand-off.
 ///
 /// The waypoints follow the object as it moves, so a push in progress goes on until the
 /// object leaves the free space (or the corridor). `remaining` is the length of the rest of
@@ -84,7 +87,8 @@ class ClearingPush {
     Eigen::Vector3d waypoint;                                   ///< where the goal link heads next
     Eigen::Matrix3d orientation = Eigen::Matrix3d::Identity();  ///< and how it is turned there
     double remaining = 0.0;  ///< m of the clearing plan still to go, and on to the goal
-    bool pushing = false;    ///< the goal link is behind the object, on the line of the push
+    /// the goal link is behind the object, on the line of the push, or sliding in to it low
+    bool pushing = false;
   };
 
   /// With `end`, an object that reaches into the free space only where the gripper need not

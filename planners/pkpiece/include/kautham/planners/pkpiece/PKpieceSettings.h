@@ -68,8 +68,8 @@ struct PKpieceSettings {
   /// How far a push points the gripper down (rad) when no stand-off beside the object has room
   /// for it at its own pitch (0: never steeper than its own).
   double crowdedPitch;
-  /// How far back along the approach (m) the gripper may be lowered beside a stand-off with no
-  /// room, to slide into it low (PushSettings::crowdedSlide; 0: lowered onto the stand-off).
+  /// How far back along the approach (m) the gripper may be lowered behind a stand-off without
+  /// room for it, to slide into it low (PushSettings::crowdedSlide; 0: lowered onto it).
   double crowdedSlide;
   /// How far from the goal point a plan may aim to end (m) where an object reaches into the
   /// free space there but not at the nearer end (0: the goal point only).
@@ -260,11 +260,11 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                Parameter::real("crowded_slide")
                    .byDefault(0.0)
                    .range(0.0, 0.2)
-                   .describe("where a push's stand-off has no room for the gripper, lower it up "
-                             "to this far back along the approach (m), where there is room, and "
-                             "slide it in low: the objects in the way slide aside instead of "
-                             "tipping under fingers lowered onto them (0: lowered onto the "
-                             "stand-off)"))
+                   .describe("where a push's stand-off has no room for the whole gripper, lower "
+                             "it up to this far back along the approach (m), at the nearest point "
+                             "with room (else the roomiest), and slide it in low: the objects in "
+                             "the way slide aside instead of tipping under fingers lowered onto "
+                             "them (0: lowered onto the stand-off)"))
           .add(&S::goalShift,
                Parameter::real("goal_shift")
                    .byDefault(0.0)
