@@ -289,7 +289,8 @@ std::string describeBlockedFreeSpace(std::size_t runs,
   std::string byObject;
   for (std::size_t i = 0; i < sorted.size(); ++i)
     byObject += fmt::format("{}{} in {}", i ? ", " : "", sorted[i].first, sorted[i].second);
-  return fmt::format("the free space not clear in {} runs: {}", runs, byObject);
+  return fmt::format("the free space not clear in {} {}: {}", runs, runs == 1 ? "run" : "runs",
+                     byObject);
 }
 
 std::string describeUncertainty(const core::Problem& problem,

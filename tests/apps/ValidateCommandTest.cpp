@@ -288,9 +288,10 @@ TEST_F(ValidateCommandTest, SaysWhichObjectsLeftTheFreeSpaceBetweenTheFingersNot
   EXPECT_GT(notClear, 0) << run.output;
   EXPECT_LE(notClear, report["failures"]["goal_missed"].get<int>());
   EXPECT_EQ(report["free_space_not_clear"]["by_object"], (nlohmann::json{{"can9", notClear}}));
-  EXPECT_NE(run.output.find("the free space not clear in " + std::to_string(notClear) +
-                            " runs: can9 in " + std::to_string(notClear)),
-            std::string::npos)
+  EXPECT_NE(
+      run.output.find("the free space not clear in " + std::to_string(notClear) +
+                      (notClear == 1 ? " run" : " runs") + ": can9 in " + std::to_string(notClear)),
+      std::string::npos)
       << run.output;
   int listed = 0;
   for (const auto& r : report["results"])
