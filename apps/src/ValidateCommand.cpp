@@ -293,6 +293,48 @@ std::string describeBlockedFreeSpace(std::size_t runs,
                      byObject);
 }
 
+/// Of the valid runs that ended short of the goal pose, how many missed each part of it.
+struct PoseMisses {
+  std::size_t runs = 0;
+  std::size_t position = 0;
+  std::size_t approach = 0;
+  std::size_t level = 0;
+
+  void count(const physics::WorkspaceGoal::PoseMiss& miss) {
+    if (!miss.any()) return;
+    ++runs;
+    position += miss.position;
+    approach += miss.approach;
+    level += miss.level;
+  }
+};
+
+/// ["position", "approach"]: what one run's gripper missed of the goal pose.
+json poseMissNames(const physics::WorkspaceGoal::PoseMiss& miss) {
+  json names = json::array();
+  if (miss.position) names.push_back("position");
+  if (miss.approach) names.push_back("approach");
+  if (miss.level) names.push_back("level");
+  return names;
+}
+
+/// "the gripper short of the goal pose in 15 runs: 5 beyond the 2.0 cm tolerance, 10 turned
+/// beyond the 0.30 rad approach tolerance" (a run may miss more than one).
+std::string describePoseMisses(const PoseMisses& misses, const physics::GoalSpec& spec) {
+  std::string parts;
+  if (misses.position)
+    parts +=
+        fmt::format(", {} beyond the {:.1f} cm tolerance", misses.position, 100.0 * spec.tolerance);
+  if (misses.approach)
+    parts += fmt::format(", {} turned beyond the {:.2f} rad approach tolerance", misses.approach,
+                         spec.approachTolerance);
+  if (misses.level)
+    parts += fmt::format(", {} with the fingers' axis tilted beyond {:.2f} rad", misses.level,
+                         spec.approachTolerance);
+  return fmt::format("the gripper short of the goal pose in {} {}: {}", misses.runs,
+                     misses.runs == 1 ? "run" : "runs", parts.substr(2));
+}
+
 std::string describeUncertainty(const core::Problem& problem,
                                 const physics::UncertaintySampler& sampler) {
   if (!sampler.hasUncertainty()) return "none (every standard deviation is zero)";
@@ -375,6 +417,7 @@ int runValidate(const ValidateOptions& options) {
   /// free space between the fingers was not clear; and in how many of them each object was.
   std::size_t runsWithFreeSpaceNotClear = 0;
   std::map<std::string, std::size_t> leftInFreeSpace;
+  PoseMisses poseMisses;
   double distanceSum = 0.0;
   json perRun = json::array();
   for (std::size_t run = 0; run < options.runs; ++run) {
@@ -396,6 +439,8 @@ int runValidate(const ValidateOptions& options) {
       ++runsWithFreeSpaceNotClear;
       for (const std::string& name : r.leftInFreeSpace) ++leftInFreeSpace[name];
     }
+    if (r.poseMissed.any()) runJson["pose_missed"] = poseMissNames(r.poseMissed);
+    poseMisses.count(r.poseMissed);
     perRun.push_back(std::move(runJson));
     if (r.reachedGoal) {
       ++successes;
@@ -432,8 +477,11 @@ int runValidate(const ValidateOptions& options) {
     for (const auto& [violation, count] : violations)
       if (classify(violation) == f)
         detail += fmt::format(", {} {}", physics::toString(violation), count);
+    // The goal's two kinds of miss, each a list of its own: "; " between them.
     if (f == Failure::GoalMissed && !leftInFreeSpace.empty())
-      detail += ", " + describeBlockedFreeSpace(runsWithFreeSpaceNotClear, leftInFreeSpace);
+      detail += "; " + describeBlockedFreeSpace(runsWithFreeSpaceNotClear, leftInFreeSpace);
+    if (f == Failure::GoalMissed && poseMisses.runs > 0)
+      detail += "; " + describePoseMisses(poseMisses, context.goal().spec());
     fmt::print("  {:<22} {:>6}{}\n", label(f), failures[f],
                detail.empty() ? "" : " (" + detail.substr(2) + ")");
   }
@@ -466,6 +514,11 @@ int runValidate(const ValidateOptions& options) {
         {"violations", byViolation},
         {"free_space_not_clear",
          {{"runs", runsWithFreeSpaceNotClear}, {"by_object", leftInFreeSpace}}},
+        {"goal_pose_missed",
+         {{"runs", poseMisses.runs},
+          {"position", poseMisses.position},
+          {"approach", poseMisses.approach},
+          {"level", poseMisses.level}}},
         {"mean_final_goal_distance", distanceSum / static_cast<double>(options.runs)},
         {"redrawn_starts", rejectedStarts},
         {"results", perRun},

@@ -119,9 +119,11 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
   result.finalGoalDistance = goal->distance(result.finalState.data());
   result.reachedGoal =
       result.firstViolation == Violation::None && goal->reached(result.finalState.data());
-  if (!result.reachedGoal && result.firstViolation == Violation::None &&
-      goal->poseReached(result.finalState.data()))
-    result.leftInFreeSpace = goal->freeSpaceOccupants(result.finalState.data());
+  if (!result.reachedGoal && result.firstViolation == Violation::None) {
+    result.poseMissed = goal->poseMiss(result.finalState.data());
+    if (goal->poseReached(result.finalState.data()))
+      result.leftInFreeSpace = goal->freeSpaceOccupants(result.finalState.data());
+  }
   return result;
 }
 

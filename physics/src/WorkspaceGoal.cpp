@@ -90,9 +90,13 @@ bool WorkspaceGoal::reached(const double* state) const {
 
 bool WorkspaceGoal::poseReached(const double* state) const {
   if (!spec_.joints.empty()) return jointError(state) <= spec_.jointTolerance;
-  return positionError(state) <= spec_.tolerance &&
-         approachError(state) <= spec_.approachTolerance &&
-         levelError(state) <= spec_.approachTolerance;
+  return !poseMiss(state).any();
+}
+
+WorkspaceGoal::PoseMiss WorkspaceGoal::poseMiss(const double* state) const {
+  if (!spec_.joints.empty()) return {};
+  return {positionError(state) > spec_.tolerance, approachError(state) > spec_.approachTolerance,
+          levelError(state) > spec_.approachTolerance};
 }
 
 double WorkspaceGoal::levelError(const double* state) const {

@@ -116,7 +116,7 @@ std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const 
   // An object reaching into the free space only where a nearby end leaves it clear needs no
   // push: the gripper ends there.
   std::optional<std::size_t> inFreeSpace = context_.goal().freeSpaceBlocker(state);
-  if (inFreeSpace && end_ && end_->shifts() && end_->clearPose(state)) inFreeSpace.reset();
+  if (inFreeSpace && end_ && end_->shifts() && end_->anyClearPose(state)) inFreeSpace.reset();
   // The corridor first; after it, the free space (a push of its own, counted as kLaterPush).
   if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
     return pushStep(state, *inCorridor,

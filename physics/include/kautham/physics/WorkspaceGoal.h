@@ -58,6 +58,14 @@ class WorkspaceGoal : public ompl::base::GoalRegion {
   bool reached(const double* state) const;
   /// reached() but for the free space: the gripper is where the goal asks, turned as it asks.
   bool poseReached(const double* state) const;
+  /// Which of poseReached()'s conditions a region's goal link misses (none for a configuration).
+  struct PoseMiss {
+    bool position = false;  ///< further from the goal point than the tolerance
+    bool approach = false;  ///< its +z turned further from the approach than its tolerance
+    bool level = false;     ///< its level axis tilted further than the approach tolerance
+    bool any() const { return position || approach || level; }
+  };
+  PoseMiss poseMiss(const double* state) const;
   /// Angle between the goal link's +z axis and the approach direction (0 without one).
   double approachError(const double* state) const;
   /// Angle between the level axis and the horizontal plane (0 without one).

@@ -270,9 +270,10 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(0.0)
                    .range(0.0, 0.05)
                    .describe("where an object reaches into the goal's free space at the goal "
-                             "point, aim the gripper at the nearest point up to this far from it "
-                             "(m, horizontally) whose free space is clear, instead of pushing it "
-                             "(0: the goal point only; keep it inside the goal margin)"))
+                             "point, aim the gripper at the pose up to this far from it (m, "
+                             "horizontally) whose free space is clear with the most room, instead "
+                             "of pushing it (0: the goal point only; keep it inside the goal "
+                             "margin)"))
           .add(&S::finalApproach,
                Parameter::real("final_approach")
                    .byDefault(0.05)
