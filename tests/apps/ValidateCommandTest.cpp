@@ -53,6 +53,36 @@ class ValidateCommandTest : public test::TemporaryFolderTest {
     test::writeFile(file, text);
     return file;
   }
+
+  /// kuka_clutter_5's plan (pKP, seed 1), made in the folder.
+  fs::path kukaClutter5Plan() {
+    const fs::path file = folder / "kuka.json";
+    const CommandRun run =
+        kautham("plan problems/kuka_clutter_5.xml --seed 1 --set uncertainty=0 -o " + quoted(file));
+    EXPECT_EQ(run.exitCode, 0) << run.output;
+    return file;
+  }
+  /// kuka_clutter_5's problem file, as text.
+  static std::string kukaClutter5Scene() {
+    return test::readFile(fs::path(KAUTHAM_SOURCE_DIR) / "problems/kuka_clutter_5.xml");
+  }
+  /// `scene` written to the folder as NAME.xml and `planFile` validated against it in `runs`
+  /// runs: the console, and the JSON report (empty if validate failed).
+  struct Validated {
+    CommandRun run;
+    nlohmann::json report;
+  };
+  Validated validateAgainst(const std::string& scene, const std::string& name,
+                            const fs::path& planFile, int runs) {
+    const fs::path problem = folder / (name + ".xml");
+    test::writeFile(problem, scene);
+    const fs::path json = folder / (name + ".json");
+    Validated result{kautham("validate " + quoted(problem) + " " + quoted(planFile) + " --runs " +
+                             std::to_string(runs) + " --model-dir models --json " + quoted(json)),
+                     {}};
+    if (result.run.exitCode == 0) result.report = readJson(json);
+    return result;
+  }
 };
 
 TEST_F(ValidateCommandTest, WithoutUncertaintyEveryRunSucceeds) {
@@ -264,12 +294,8 @@ TEST_F(ValidateCommandTest, SaysWhichObjectsLeftTheFreeSpaceBetweenTheFingersNot
   // pre-grasp, 0.7 mm outside the free space between the fingers (where kuka_clutter_30's can23
   // stands). The plan never goes near it, but the sampled start poses (5 mm) put it inside in
   // some runs: they end with the gripper at the goal and the pre-grasp not clear, and say so.
-  const fs::path kukaPlan = folder / "kuka.json";
-  ASSERT_EQ(kautham("plan problems/kuka_clutter_5.xml --seed 1 --set uncertainty=0 -o " +
-                    quoted(kukaPlan))
-                .exitCode,
-            0);
-  std::string scene = test::readFile(fs::path(KAUTHAM_SOURCE_DIR) / "problems/kuka_clutter_5.xml");
+  const fs::path kukaPlan = kukaClutter5Plan();
+  std::string scene = kukaClutter5Scene();
   const std::string beside =
       "  <Obstacle obstacle=\"objects/can.urdf\" role=\"movable\">\n"
       "    <KauthamName name=\"can9\"/>\n"
@@ -278,13 +304,8 @@ TEST_F(ValidateCommandTest, SaysWhichObjectsLeftTheFreeSpaceBetweenTheFingersNot
   const auto at = scene.find("  <Obstacle obstacle=\"objects/can.urdf\"");
   ASSERT_NE(at, std::string::npos);
   scene.insert(at, beside);
-  const fs::path problem = folder / "kuka_clutter_5_beside.xml";
-  test::writeFile(problem, scene);
-  const fs::path json = folder / "beside.json";
-  const CommandRun run = kautham("validate " + quoted(problem) + " " + quoted(kukaPlan) +
-                                 " --runs 20 --model-dir models --json " + quoted(json));
+  const auto [run, report] = validateAgainst(scene, "kuka_clutter_5_beside", kukaPlan, 20);
   ASSERT_EQ(run.exitCode, 0) << run.output;
-  const nlohmann::json report = readJson(json);
   const int notClear = report["free_space_not_clear"]["runs"];
   EXPECT_GT(notClear, 0) << run.output;
   EXPECT_LE(notClear, report["failures"]["goal_missed"].get<int>());
@@ -310,12 +331,8 @@ TEST_F(ValidateCommandTest, SaysWhatTheGripperMissedOfTheGoalPose) {
   // kuka_clutter_5's plan (pKP, seed 1) ends within 1 cm of the goal point, pointing 0.2 rad
   // down. Executed against a goal that asks 5 mm and 0.15 rad, the runs that end valid miss the
   // approach, every one, and some the position: validate says which, run by run and in sum.
-  const fs::path kukaPlan = folder / "kuka.json";
-  ASSERT_EQ(kautham("plan problems/kuka_clutter_5.xml --seed 1 --set uncertainty=0 -o " +
-                    quoted(kukaPlan))
-                .exitCode,
-            0);
-  std::string scene = test::readFile(fs::path(KAUTHAM_SOURCE_DIR) / "problems/kuka_clutter_5.xml");
+  const fs::path kukaPlan = kukaClutter5Plan();
+  std::string scene = kukaClutter5Scene();
   for (const auto& [from, to] :
        {std::pair<std::string, std::string>{"tolerance=\"0.02\"", "tolerance=\"0.005\""},
         {"approachTolerance=\"0.3\"", "approachTolerance=\"0.15\""}}) {
@@ -323,13 +340,8 @@ TEST_F(ValidateCommandTest, SaysWhatTheGripperMissedOfTheGoalPose) {
     ASSERT_NE(at, std::string::npos) << from;
     scene.replace(at, from.size(), to);
   }
-  const fs::path problem = folder / "kuka_clutter_5_strict.xml";
-  test::writeFile(problem, scene);
-  const fs::path json = folder / "strict.json";
-  const CommandRun run = kautham("validate " + quoted(problem) + " " + quoted(kukaPlan) +
-                                 " --runs 10 --model-dir models --json " + quoted(json));
+  const auto [run, report] = validateAgainst(scene, "kuka_clutter_5_strict", kukaPlan, 10);
   ASSERT_EQ(run.exitCode, 0) << run.output;
-  const nlohmann::json report = readJson(json);
   int valid = 0;
   int position = 0;
   for (const auto& r : report["results"]) {
