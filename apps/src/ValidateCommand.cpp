@@ -293,7 +293,7 @@ std::string describeBlockedFreeSpace(std::size_t runs,
                      byObject);
 }
 
-/// Of the valid runs that ended short of the goal pose, how many missed each part of it.
+/// Of the valid runs that ended off the goal pose, how many missed each part of it.
 struct PoseMisses {
   std::size_t runs = 0;
   std::size_t position = 0;
@@ -318,20 +318,20 @@ json poseMissNames(const physics::WorkspaceGoal::PoseMiss& miss) {
   return names;
 }
 
-/// "the gripper short of the goal pose in 15 runs: 5 beyond the 2.0 cm tolerance, 10 turned
-/// beyond the 0.30 rad approach tolerance" (a run may miss more than one).
+/// "the gripper off the goal pose in 15 runs: 5 beyond the 2 cm tolerance, 10 turned beyond the
+/// 0.3 rad approach tolerance" (a run may miss more than one).
 std::string describePoseMisses(const PoseMisses& misses, const physics::GoalSpec& spec) {
   std::string parts;
   if (misses.position)
     parts +=
-        fmt::format(", {} beyond the {:.1f} cm tolerance", misses.position, 100.0 * spec.tolerance);
+        fmt::format(", {} beyond the {:g} cm tolerance", misses.position, 100.0 * spec.tolerance);
   if (misses.approach)
-    parts += fmt::format(", {} turned beyond the {:.2f} rad approach tolerance", misses.approach,
+    parts += fmt::format(", {} turned beyond the {:g} rad approach tolerance", misses.approach,
                          spec.approachTolerance);
   if (misses.level)
-    parts += fmt::format(", {} with the fingers' axis tilted beyond {:.2f} rad", misses.level,
-                         spec.approachTolerance);
-  return fmt::format("the gripper short of the goal pose in {} {}: {}", misses.runs,
+    parts += fmt::format(", {} with the level axis tilted beyond the {:g} rad approach tolerance",
+                         misses.level, spec.approachTolerance);
+  return fmt::format("the gripper off the goal pose in {} {}: {}", misses.runs,
                      misses.runs == 1 ? "run" : "runs", parts.substr(2));
 }
 

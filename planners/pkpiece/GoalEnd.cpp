@@ -18,16 +18,17 @@ constexpr double kToleranceKept = 0.05;  // rad
 // A free space filled more than this at the goal point is not cleared by ending within a
 // centimetre, turned a little (a can reaching 1 cm into its far end fills 3 %): no pose beside
 // the goal point is tried. The search asks at every state while a can is pushed out, and trying
-// the 200 poses costs as much as 200 free-space tests.
+// the 200 poses costs about 200 free-space tests.
 constexpr double kMostFilled = 0.05;
 // The room a pose beside the goal point leaves around its free space at least: the arm ends
 // within a few millimetres of where it is steered, and an end on the edge of a clear pose would
 // not do.
 constexpr double kRoom = 0.002;  // m
 // Of the poses with room, the steering takes one with the most, counted in these steps up to
-// kMostRoom: the objects stand where the scene says only to its pose noise (5 mm on the dense
-// suite), and on kuka_clutter_30 the nearest pose with 2 mm of room had can20 or can23 in its
-// free space in about half the executions that reached it (docs/planners.md, session 33).
+// kMostRoom: the objects' poses are uncertain (on the dense suite, 5 mm standard deviation each
+// way, about 7 mm between two objects), and on kuka_clutter_30 the nearest pose with 2 mm of room
+// had can20 or can23 in its free space in about half the executions that reached it
+// (docs/planners.md, session 33).
 constexpr double kRoomStep = 0.001;  // m
 constexpr double kMostRoom = 0.012;  // m
 
@@ -71,10 +72,13 @@ GoalEnd::GoalEnd(const physics::PlanningContext& context, const Eigen::Matrix3d&
   });
   for (const Tried& t : tried) poses_.push_back(t.pose);
   if (!spec.freeSpace) return;
-  for (double room = kRoom; room <= kMostRoom + 1e-9; room += kRoomStep)
+  const int levels = static_cast<int>(std::lround((kMostRoom - kRoom) / kRoomStep)) + 1;
+  for (int level = 0; level < levels; ++level) {
+    const double room = kRoom + level * kRoomStep;
     roomier_.emplace_back(context.sharedLayout(),
                           spec.freeSpace->size + Eigen::Vector3d::Constant(2.0 * room),
                           spec.freeSpace->center);
+  }
 }
 
 Eigen::Isometry3d GoalEnd::linkAt(const Pose& pose) {
@@ -98,6 +102,19 @@ bool GoalEnd::anyClearPose(const double* state) const {
   return nearestClear(state).has_value();
 }
 
+std::size_t GoalEnd::climb(const double* state, const Eigen::Isometry3d& link,
+                           std::size_t level) const {
+  while (level < roomier_.size() && roomier_[level].isFree(state, link)) ++level;
+  return level - 1;
+}
+
+bool GoalEnd::clearThrough(const double* state, const Eigen::Isometry3d& link,
+                           std::size_t level) const {
+  for (std::size_t l = 0; l <= level; ++l)
+    if (!roomier_[l].isFree(state, link)) return false;
+  return true;
+}
+
 std::optional<GoalEnd::Pose> GoalEnd::clearPose(const double* state) const {
   if (!shifts()) {
     // As before there were shifts: the free space judged at the goal's nominal pose.
@@ -107,18 +124,21 @@ std::optional<GoalEnd::Pose> GoalEnd::clearPose(const double* state) const {
   const std::optional<std::size_t> first = nearestClear(state);
   if (!first) return std::nullopt;
   if (*first == 0) return poses_.front();  // the goal point's free space is clear
-  // The poses with kRoom, nearest first; then, room step by room step, those that keep it.
-  std::vector<std::size_t> roomiest{*first};
-  for (std::size_t i = *first + 1; i < poses_.size(); ++i)
-    if (roomier_.front().isFree(state, linkAt(poses_[i]))) roomiest.push_back(i);
-  for (std::size_t level = 1; level < roomier_.size(); ++level) {
-    std::vector<std::size_t> kept;
-    for (const std::size_t i : roomiest)
-      if (roomier_[level].isFree(state, linkAt(poses_[i]))) kept.push_back(i);
-    if (kept.empty()) break;
-    roomiest.swap(kept);
+  // One pass, nearest first. A farther pose replaces the best only with more room, so it is
+  // asked first about the level above the best's: one free-space test rules most poses out.
+  // A pose's room is the last level of an unbroken run from the first: the free spaces are
+  // judged on sample points that move as they grow, so clear at one level need not mean clear
+  // at every level below it.
+  std::size_t best = *first;
+  std::size_t bestLevel = climb(state, linkAt(poses_[best]), 1);
+  for (std::size_t i = best + 1; i < poses_.size() && bestLevel + 1 < roomier_.size(); ++i) {
+    const Eigen::Isometry3d link = linkAt(poses_[i]);
+    if (!roomier_[bestLevel + 1].isFree(state, link) || !clearThrough(state, link, bestLevel))
+      continue;
+    best = i;
+    bestLevel = climb(state, link, bestLevel + 2);
   }
-  return poses_[roomiest.front()];
+  return poses_[best];
 }
 
 }  // namespace kautham::planners

@@ -113,8 +113,8 @@ TEST(DenseClearingTest, AnEndBesideTheGoalPointKeepsTheMostRoomAroundItsFreeSpac
   // can11 ahead of it; can20 reaches into the free space at the goal point. The gripper is
   // pitched 0.2 rad down, as the file's approach holds it. The nearest pose with 2 mm of room
   // (the end chosen before session 33) is 5 mm back, turned 0.15 rad about the vertical: its
-  // free space has less than 5 mm of room from can20 and can23, which stand where the scene says
-  // only to 5 mm (its pose noise). The end chosen now keeps 5 mm or more.
+  // free space has less than 5 mm of room from can20 and can23, whose poses are uncertain by
+  // 5 mm (standard deviation). The end chosen now keeps 5 mm or more.
   Clutter30 scene;
   std::vector<double> state = scene.corridorCleared();
   scene.carry(state, "can1", -0.134, 0.171);
@@ -149,6 +149,9 @@ TEST(DenseClearingTest, AnEndBesideTheGoalPointKeepsTheMostRoomAroundItsFreeSpac
   ASSERT_TRUE(end.has_value());
   EXPECT_LE((end->point - goal.position()).norm(), 0.0075 + 1e-9);
   EXPECT_TRUE(roomAt(0.005, end->point, end->turn));
+  // Not the nearest clear pose: the room is bought with distance from the goal point.
+  EXPECT_GT((end->point - goal.position()).norm(), 0.005 - 1e-9);
+  EXPECT_FALSE(end->point.isApprox(back, 1e-9) && end->turn.isApprox(turned, 1e-9));
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ struct ExecutionResult {
   /// it: the movable objects in the free space between its fingers (WorkspaceGoal::poseReached;
   /// the pre-grasp is not clear).
   std::vector<std::string> leftInFreeSpace;
-  /// A valid run that ended short of the goal pose: what it missed (for a region's goal).
+  /// A valid run that ended off the goal pose: what it missed (for a region's goal).
   WorkspaceGoal::PoseMiss poseMissed;
   ContactParameters contact;       ///< the contact parameters of the run
   std::size_t rejectedStarts = 0;  ///< sampled starts redrawn because things interpenetrated

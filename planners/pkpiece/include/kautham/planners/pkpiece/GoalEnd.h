@@ -19,11 +19,12 @@ namespace kautham::planners {
 /// on a 2.5 mm grid; then turned by up to 0.15 rad about the vertical, within the goal's
 /// approach tolerance) whose free space is clear with 2 mm to spare on every side (the arm ends
 /// within a few millimetres of where it is steered): of those, the one with the most room, in
-/// 1 mm steps up to 12 mm, and the nearest of equals. The objects stand where the scene says
-/// only to within their pose noise, and an end with 2 mm of room finds one of them in its free
-/// space about half the time (kuka_clutter_30). The goal region allows it: the gripper
-/// may end anywhere within the tolerance, turned within the approach tolerance, and the free
-/// space moves with it. On kuka_clutter_30 a can behind the target reaches 6 mm into the free
+/// 1 mm steps up to 12 mm (each judged on the free space's sample points, up to 1 cm apart),
+/// and the nearest of equals. The objects' poses are uncertain (on the dense suite, 5 mm
+/// standard deviation each way), and an end with 2 mm of room found one of them in its free
+/// space in about half the executions that reached it (kuka_clutter_30). The goal region allows it:
+/// the gripper may end anywhere within the tolerance, turned within the approach tolerance, and the
+/// free space moves with it. On kuka_clutter_30 a can behind the target reaches 6 mm into the free
 /// space's far end, where no push can get at it without touching the target; 7.5 mm short of
 /// the goal point, the free space is clear.
 class GoalEnd {
@@ -57,6 +58,11 @@ class GoalEnd {
   /// pose with kRoom; none if there is none, or the free space at the goal point is
   /// too full for a pose nearby to be clear.
   std::optional<std::size_t> nearestClear(const double* state) const;
+  /// The last room level (index in roomier_) clear at `link`, climbing from `level`, the levels
+  /// below it known clear.
+  std::size_t climb(const double* state, const Eigen::Isometry3d& link, std::size_t level) const;
+  /// Whether the free space at `link` is clear at every room level up to `level`.
+  bool clearThrough(const double* state, const Eigen::Isometry3d& link, std::size_t level) const;
 };
 
 }  // namespace kautham::planners
