@@ -6,8 +6,9 @@
 # speeds are uncertain. p-KPIECE plans for that uncertainty (particles on every core), then
 # `kautham validate` executes the plan 100 times under sampled uncertainty. The job asks for a
 # plan that at least 80 % of the planner's own verification runs carry to the goal
-# (goal_confidence 0.8; the scene's file says 0.5, which lets seed 1 end with a plan that
-# succeeds 82 % of the time; docs/benchmarks.md, session 23). The plan is written
+# (goal_confidence 0.8; the scene's file says 0.5, which lets the search stop at the first plan
+# that half the runs carry: in session 23 seed 1 ended so with a plan that succeeded 82 % of the
+# time; today both give the same plan). The plan is written
 # to out/plan.json and its animated replay to out/plan.html (open it in a browser). Extra
 # arguments go to `kautham plan`.
 set -euo pipefail

@@ -207,6 +207,7 @@ void PKpiece::computeImportance(Grid::Cell* cell, void* planner) {
 }
 
 void PKpiece::addMotion(Motion* motion) {
+  ++treeMotionCount_;
   Grid::Coord coord(context_.projection().getDimension());
   context_.projection().computeCoordinates(motion->state, coord);
   Grid::Cell* cell = grid_.getCell(coord);
@@ -738,6 +739,7 @@ void PKpiece::plantRoot() {
                     : std::make_shared<const ObjectPoseBelief>();
   Motion* raw = root.get();
   motions_.push_back(std::move(root));
+  treeMotionCount_ = 0;
   addMotion(raw);
   grid_.updateAll();
   progressRank_ = raw->goalDistance;
@@ -745,6 +747,7 @@ void PKpiece::plantRoot() {
 }
 
 bool PKpiece::stalled() {
+  if (settings_.treeMotions > 0 && treeMotionCount_ >= settings_.treeMotions) return true;
   if (treeBestRank_ <= progressRank_ - kProgress) {
     progressRank_ = treeBestRank_;
     expansionsSinceProgress_ = 0;

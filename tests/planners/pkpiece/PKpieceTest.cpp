@@ -145,6 +145,17 @@ TEST(PKpieceTest, AStalledSearchStartsAfreshAndSolves) {
   EXPECT_GE(std::stol(run.property("restarts")), 1);
 }
 
+TEST(PKpieceTest, ATreeThatOutgrowsItsBudgetStartsAfreshAndSolves) {
+  // kuka_clutter_10 seed 1, without uncertainty: its one tree holds 309 motions when it solves.
+  // Held to 250, the first tree is dropped unfinished however it is getting on, and the second
+  // solves within the budget.
+  const PlanRun run = plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1,
+                           {{"uncertainty", "0"}, {"tree_motions", "250"}});
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_GE(std::stol(run.property("restarts")), 1);
+}
+
 TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {
   // Forced to start afresh after every expansion that makes no progress: the restarts come at the
   // same expansions, and the plan is the same, with one thread or two.

@@ -156,7 +156,7 @@ class PKpiece : public ompl::base::Planner,
   /// Adds a root motion at the start state to an empty tree.
   void plantRoot();
   /// Counts the expansion that just ended towards restartAfter; true when the tree is due to
-  /// start afresh.
+  /// start afresh, for that or because it holds treeMotions motions.
   bool stalled();
   /// Forgets the tree for the search (its cells, the motions near the goal) and plants a new
   /// root; the old motions stay, so the nearest of all can still be an approximate solution.
@@ -202,6 +202,7 @@ class PKpiece : public ompl::base::Planner,
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to
   unsigned expansionsSinceProgress_ = 0;  ///< expansions since then (restartAfter)
+  std::size_t treeMotionCount_ = 0;       ///< motions in the current tree (treeMotions)
   std::uint64_t restarts_ = 0;            ///< times the tree started afresh
 };
 

@@ -95,6 +95,12 @@ struct PKpieceSettings {
   /// The tree is started afresh from the start state after this many expansions in which the
   /// motion nearest the goal (by the goal bias's ranking) came no centimetre nearer. 0: never.
   unsigned restartAfter;
+  /// The tree is started afresh once it holds this many motions without having ended the
+  /// search, however it is getting on. 0: never. A tree's time to a plan is heavy-tailed on the
+  /// dense scenes (one tree solves kuka_clutter_30 in a few hundred motions or not for
+  /// thousands), and a fixed cutoff is the restart rule for such searches (Luby, Sinclair and
+  /// Zuckerman 1993).
+  unsigned treeMotions;
   /// A plan that fails verification starts the tree afresh: grown on, the tree mostly reaches
   /// the goal again through the rejected plan's pushes.
   bool restartOnRejection;
@@ -314,6 +320,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0, 100000000)
                    .describe("start the tree afresh after this many expansions in which the "
                              "motion nearest the goal came no centimetre nearer (0: never)"))
+          .add(&S::treeMotions,
+               Parameter::integer("tree_motions")
+                   .byDefault(0)
+                   .range(0, 100000000)
+                   .describe("start the tree afresh once it holds this many motions without a "
+                             "plan, however it is getting on (0: never)"))
           .add(&S::restartOnRejection,
                Parameter::flag("restart_on_rejection")
                    .byDefault(0)
