@@ -134,6 +134,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(steering_.jacobianAims()); });
   // Times the tree was started afresh after restart_after expansions without progress.
   addPlannerProgressProperty("restarts INTEGER", [this] { return std::to_string(restarts_); });
+  // 1 when the search ended because its trees hold max_motions motions, not at the time limit.
+  addPlannerProgressProperty("motion_budget_spent INTEGER",
+                             [this] { return std::to_string(outOfMotions() ? 1 : 0); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -701,7 +704,7 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
 ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCondition& ptc) {
   checkValidity();
   if (motions_.empty()) plantRoot();
-  while (!ptc) {
+  while (!ptc && !outOfMotions()) {
     Motion* from = selectMotion();
     CellData* cell = from->cell;
     Motion* added = expand(from);
@@ -744,6 +747,10 @@ void PKpiece::plantRoot() {
   grid_.updateAll();
   progressRank_ = raw->goalDistance;
   expansionsSinceProgress_ = 0;
+}
+
+bool PKpiece::outOfMotions() const {
+  return settings_.maxMotions > 0 && motions_.size() >= settings_.maxMotions;
 }
 
 bool PKpiece::stalled() {

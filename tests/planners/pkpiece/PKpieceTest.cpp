@@ -156,6 +156,29 @@ TEST(PKpieceTest, ATreeThatOutgrowsItsBudgetStartsAfreshAndSolves) {
   EXPECT_GE(std::stol(run.property("restarts")), 1);
 }
 
+TEST(PKpieceTest, AMotionBudgetEndsTheSearchAsTheTimeLimitDoes) {
+  // kuka_clutter_10 seed 1, without uncertainty: its one tree holds 309 motions when it solves.
+  // Held to 150 motions the search ends unsolved there, whatever the time left; a budget it
+  // ends within changes nothing, control for control.
+  const PlanRun cut = plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1,
+                           {{"uncertainty", "0"}, {"max_motions", "150"}});
+  EXPECT_FALSE(cut.outcome.solved);
+  EXPECT_EQ(cut.property("motion_budget_spent"), "1");
+  EXPECT_GE(cut.outcome.statistics.treeStates, 150u);
+  EXPECT_LT(cut.outcome.statistics.treeStates, 200u);  // the expansion under way is finished
+  const PlanRun unlimited =
+      plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1, {{"uncertainty", "0"}});
+  const PlanRun within = plan("problems/kuka_clutter_10.xml", "p-KPIECE", 1,
+                              {{"uncertainty", "0"}, {"max_motions", "400"}});
+  ASSERT_TRUE(unlimited.outcome.solved);
+  ASSERT_TRUE(within.outcome.solved);
+  EXPECT_EQ(within.property("motion_budget_spent"), "0");
+  EXPECT_EQ(unlimited.outcome.statistics.treeStates, within.outcome.statistics.treeStates);
+  ASSERT_EQ(unlimited.outcome.controls.size(), within.outcome.controls.size());
+  for (std::size_t i = 0; i < unlimited.outcome.controls.size(); ++i)
+    EXPECT_EQ(unlimited.outcome.controls[i].values, within.outcome.controls[i].values) << i;
+}
+
 TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {
   // Forced to start afresh after every expansion that makes no progress: the restarts come at the
   // same expansions, and the plan is the same, with one thread or two.

@@ -155,6 +155,8 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t nextStreamSeed();
   /// Adds a root motion at the start state to an empty tree.
   void plantRoot();
+  /// True once the trees hold maxMotions motions together: the search ends as at its time limit.
+  bool outOfMotions() const;
   /// Counts the expansion that just ended towards restartAfter; true when the tree is due to
   /// start afresh, for that or because it holds treeMotions motions.
   bool stalled();

@@ -101,6 +101,11 @@ struct PKpieceSettings {
   /// thousands), and a fixed cutoff is the restart rule for such searches (Luby, Sinclair and
   /// Zuckerman 1993).
   unsigned treeMotions;
+  /// The search ends once its trees hold this many motions together, as when the time runs out
+  /// (0: only the time ends it). A budget in work rather than time: a fixed seed then ends with
+  /// the same outcome on a slow machine as on a fast one, where a time limit ends a run on one
+  /// machine at a third of the search it reaches on another.
+  unsigned maxMotions;
   /// A plan that fails verification starts the tree afresh: grown on, the tree mostly reaches
   /// the goal again through the rejected plan's pushes.
   bool restartOnRejection;
@@ -326,6 +331,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .range(0, 100000000)
                    .describe("start the tree afresh once it holds this many motions without a "
                              "plan, however it is getting on (0: never)"))
+          .add(&S::maxMotions,
+               Parameter::integer("max_motions")
+                   .byDefault(0)
+                   .range(0, 100000000)
+                   .describe("end the search once all its trees hold this many motions, as when "
+                             "the time runs out: a budget in work, the same on any machine (0: "
+                             "the time limit only)"))
           .add(&S::restartOnRejection,
                Parameter::flag("restart_on_rejection")
                    .byDefault(0)
