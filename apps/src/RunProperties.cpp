@@ -59,6 +59,8 @@ void addPlanProperties(const json& plan, RunProperties& properties) {
     properties["particles INTEGER"] = integer(static_cast<std::uint64_t>(*particles));
   if (const auto restarts = plannerStatistic(plan, "restarts"))
     properties["restarts INTEGER"] = integer(static_cast<std::uint64_t>(*restarts));
+  if (const auto spent = plannerStatistic(plan, "motion_budget_spent"))
+    properties["motion budget spent BOOLEAN"] = boolean(*spent != 0.0);
 
   if (plan.at("controls").empty()) return;  // no path, not even an approximate one
   const json& replay = result.at("replay");

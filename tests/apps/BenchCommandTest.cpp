@@ -213,7 +213,8 @@ TEST_F(BenchCommandTest, ResultFileHoldsTheRunAndItsProperties) {
   EXPECT_EQ(p["graph states INTEGER"],
             std::to_string(plan["statistics"]["tree_states"].get<int>()));
   EXPECT_EQ(p["execution success REAL"], "1");
-  EXPECT_FALSE(p.contains("particles INTEGER"));  // KPIECE has none
+  EXPECT_FALSE(p.contains("particles INTEGER"));            // KPIECE has none
+  EXPECT_FALSE(p.contains("motion budget spent BOOLEAN"));  // nor a motion budget
   EXPECT_NE(
       test::readFile(folder / "out/console/pusher_free/KPIECE/run-1.txt").find("solved    yes"),
       std::string::npos);
@@ -233,6 +234,21 @@ TEST_F(BenchCommandTest, PKpiecesRestartsAreARunProperty) {
     if (key == "restarts") restarts = value.is_string() ? value.get<std::string>() : value.dump();
   ASSERT_FALSE(restarts.empty()) << plan["statistics"].dump();
   EXPECT_EQ(result["properties"]["restarts INTEGER"], restarts);
+}
+
+TEST_F(BenchCommandTest, PKpiecesMotionBudgetIsARunProperty) {
+  // max_motions 1: the root is the one motion, so the search ends before its first expansion,
+  // with time to spare.
+  ASSERT_EQ(kautham("bench problems/pusher_free.xml --planner p-KPIECE --runs 1 --time 30 "
+                    "--set uncertainty=0 --set max_motions=1 " +
+                    out())
+                .exitCode,
+            0);
+  const json result = readJson(folder / "out/runs/pusher_free/p-KPIECE/run-0.json");
+  const json& p = result["properties"];
+  EXPECT_EQ(p["solved BOOLEAN"], "0");
+  EXPECT_EQ(p["graph states INTEGER"], "1");
+  EXPECT_EQ(p["motion budget spent BOOLEAN"], "1");
 }
 
 TEST_F(BenchCommandTest, AConfigurationsPhysicsReachesItsPlansAndTheirValidation) {
