@@ -136,7 +136,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   addPlannerProgressProperty("restarts INTEGER", [this] { return std::to_string(restarts_); });
   // 1 when the search ended because its trees hold max_motions motions, not at the time limit.
   addPlannerProgressProperty("motion_budget_spent INTEGER",
-                             [this] { return std::to_string(outOfMotions() ? 1 : 0); });
+                             [this] { return std::to_string(motionBudgetSpent_ ? 1 : 0); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -188,7 +188,9 @@ void PKpiece::clear() {
   verified_.clear();
   closest_ = nullptr;
   expansionsSinceProgress_ = 0;
+  treeMotionCount_ = 0;
   restarts_ = 0;
+  motionBudgetSpent_ = false;
 }
 
 std::uint64_t PKpiece::nextStreamSeed() {
@@ -704,6 +706,7 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
 ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCondition& ptc) {
   checkValidity();
   if (motions_.empty()) plantRoot();
+  motionBudgetSpent_ = false;
   while (!ptc && !outOfMotions()) {
     Motion* from = selectMotion();
     CellData* cell = from->cell;
@@ -725,6 +728,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     }
     if (stalled()) startAfresh();
   }
+  motionBudgetSpent_ = outOfMotions();
   if (!verified_.empty()) return returnBestCollected();
   if (!closest_ || closest_->parent == nullptr) return ompl::base::PlannerStatus::TIMEOUT;
   recordSolution(closest_, false, closest_->goalDistance);

@@ -206,6 +206,7 @@ class PKpiece : public ompl::base::Planner,
   unsigned expansionsSinceProgress_ = 0;  ///< expansions since then (restartAfter)
   std::size_t treeMotionCount_ = 0;       ///< motions in the current tree (treeMotions)
   std::uint64_t restarts_ = 0;            ///< times the tree started afresh
+  bool motionBudgetSpent_ = false;        ///< the last solve() ended at maxMotions
 };
 
 }  // namespace kautham::planners
