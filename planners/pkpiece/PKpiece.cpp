@@ -188,7 +188,7 @@ void PKpiece::clear() {
   verified_.clear();
   closest_ = nullptr;
   expansionsSinceProgress_ = 0;
-  treeMotionCount_ = 0;
+  treeStart_ = 0;
   restarts_ = 0;
   motionBudgetSpent_ = false;
 }
@@ -212,7 +212,6 @@ void PKpiece::computeImportance(Grid::Cell* cell, void* planner) {
 }
 
 void PKpiece::addMotion(Motion* motion) {
-  ++treeMotionCount_;
   Grid::Coord coord(context_.projection().getDimension());
   context_.projection().computeCoordinates(motion->state, coord);
   Grid::Cell* cell = grid_.getCell(coord);
@@ -745,8 +744,8 @@ void PKpiece::plantRoot() {
                     ? ObjectPoseBelief::initial(context_.layout(), evaluator_.sampler(), start)
                     : std::make_shared<const ObjectPoseBelief>();
   Motion* raw = root.get();
+  treeStart_ = motions_.size();
   motions_.push_back(std::move(root));
-  treeMotionCount_ = 0;
   addMotion(raw);
   grid_.updateAll();
   progressRank_ = raw->goalDistance;
@@ -758,7 +757,8 @@ bool PKpiece::outOfMotions() const {
 }
 
 bool PKpiece::stalled() {
-  if (settings_.treeMotions > 0 && treeMotionCount_ >= settings_.treeMotions) return true;
+  if (settings_.treeMotions > 0 && motions_.size() - treeStart_ >= settings_.treeMotions)
+    return true;
   if (treeBestRank_ <= progressRank_ - kProgress) {
     progressRank_ = treeBestRank_;
     expansionsSinceProgress_ = 0;

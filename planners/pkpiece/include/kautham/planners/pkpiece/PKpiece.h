@@ -204,9 +204,9 @@ class PKpiece : public ompl::base::Planner,
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to
   unsigned expansionsSinceProgress_ = 0;  ///< expansions since then (restartAfter)
-  std::size_t treeMotionCount_ = 0;       ///< motions in the current tree (treeMotions)
-  std::uint64_t restarts_ = 0;            ///< times the tree started afresh
-  bool motionBudgetSpent_ = false;        ///< the last solve() ended at maxMotions
+  std::size_t treeStart_ = 0;       ///< motions_'s index of the current tree's root (treeMotions)
+  std::uint64_t restarts_ = 0;      ///< times the tree started afresh
+  bool motionBudgetSpent_ = false;  ///< the last solve() ended at maxMotions
 };
 
 }  // namespace kautham::planners
