@@ -132,7 +132,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   // without it: the Jacobian aimed them.
   addPlannerProgressProperty("steered_by_jacobian INTEGER",
                              [this] { return std::to_string(steering_.jacobianAims()); });
-  // Times the tree was started afresh after restart_after expansions without progress.
+  // Times the tree was started afresh: stalled (restart_after) or full (tree_motions).
   addPlannerProgressProperty("restarts INTEGER", [this] { return std::to_string(restarts_); });
   // 1 when the search ended because its trees hold max_motions motions, not at the time limit.
   addPlannerProgressProperty("motion_budget_spent INTEGER",
