@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages this project builds and tests with (ompl-demos, with
-# python3-matplotlib, and sqlite3: `kautham bench` logs become a Planner Arena database).
+# python3-matplotlib, and sqlite3: `kautham bench` logs become a Planner Arena database; and
+# libmujoco-dev for the benchmark that measures ODE against MuJoCo, tests/benchmarks).
 # Idempotent: when every package is present it only checks and returns (well under a second).
 set -euo pipefail
 
@@ -13,6 +14,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libjs-three chromium
   ompl-demos python3-matplotlib sqlite3
+  libmujoco-dev
 )
 
 missing=()
