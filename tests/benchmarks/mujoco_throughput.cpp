@@ -41,6 +41,7 @@
 #include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
+#include "PlanControls.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/physics/ControlMapping.h"
 #include "kautham/physics/PlanningContext.h"
@@ -63,21 +64,8 @@ constexpr double kArmature = 0.1;
 constexpr double kDefaultMass = 0.1;
 constexpr double kDefaultRadius = 0.02;
 
-struct PlanControl {
-  std::vector<double> values;
-  double duration = 0.0;  ///< seconds
-};
-
-std::vector<PlanControl> readControls(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot be read");
-  const nlohmann::json plan = nlohmann::json::parse(in);
-  std::vector<PlanControl> controls;
-  for (const auto& c : plan.at("controls"))
-    controls.push_back({c.at("values").get<std::vector<double>>(), c.at("duration").get<double>()});
-  if (controls.empty()) throw std::runtime_error(file + ": the plan has no controls");
-  return controls;
-}
+using kautham::benchmarks::PlanControl;
+using kautham::benchmarks::readControls;
 
 // ---------------------------------------------------------------------------------------------
 // The MJCF text

@@ -21,6 +21,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "PlanControls.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/WorldStateSpace.h"
@@ -33,21 +34,8 @@ using kautham::physics::PlanningContext;
 using kautham::physics::WorldLayout;
 using kautham::physics::WorldStateSpace;
 
-struct PlanControl {
-  std::vector<double> values;
-  unsigned steps = 0;  ///< propagation steps
-};
-
-std::vector<PlanControl> readControls(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot be read");
-  const nlohmann::json plan = nlohmann::json::parse(in);
-  std::vector<PlanControl> controls;
-  for (const auto& c : plan.at("controls"))
-    controls.push_back({c.at("values").get<std::vector<double>>(), c.at("steps").get<unsigned>()});
-  if (controls.empty()) throw std::runtime_error(file + ": the plan has no controls");
-  return controls;
-}
+using kautham::benchmarks::PlanControl;
+using kautham::benchmarks::readControls;
 
 /// One propagation step of `control` from `from` in `context`.
 std::vector<double> step(PlanningContext& context, const std::vector<double>& from,
