@@ -217,6 +217,9 @@ std::string sceneMjcf(const Problem& problem, PlanningContext& ode, const Solver
     const auto& info = layout.bodies[b];
     if (info.role == BodyRole::Robot) continue;
     const auto& object = problem.objects[static_cast<std::size_t>(info.objectIndex)];
+    if (object.model.links.size() != 1)  // never a scene with a part of an object missing
+      throw std::runtime_error(object.name + " has " + std::to_string(object.model.links.size()) +
+                               " links; only objects of one link are written to MuJoCo");
     const auto& link = object.model.links[object.model.rootLink];
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.translation() = WorldLayout::position(start.data(), b);
