@@ -136,13 +136,13 @@ class MjcfWriter {
   }
 
   /// The robot's link `link` and everything below it. `values`: each movable joint's start
-  /// value; `controlled`: the joints a control moves (the others are welded where they start).
+  /// value; `isControlled`: the joints a control moves (the others are welded where they start).
   void robotLink(std::ostream& out, const KinematicModel& model, int link,
                  const Eigen::Isometry3d& pose, const std::map<std::string, double>& values,
-                 const std::map<std::string, bool>& controlled) {
+                 const std::map<std::string, bool>& isControlled) {
     const auto& l = model.links[link];
     const Joint* joint = l.parentJoint >= 0 ? &model.joints[l.parentJoint] : nullptr;
-    const bool moves = joint && joint->isMovable() && controlled.at(joint->name);
+    const bool moves = joint && joint->isMovable() && isControlled.at(joint->name);
     Eigen::Isometry3d frame = pose;
     if (joint && joint->isMovable() && !moves)
       frame = frame * KinematicModel::jointMotion(*joint, values.at(joint->name));
@@ -156,24 +156,24 @@ class MjcfWriter {
         out << " limited=\"true\" range=\"" << numbers({joint->lower, joint->upper}) << "\"";
       if (!slide) out << " armature=\"" << kArmature << "\"";
       out << "/>\n";
-      actuated_.push_back(*joint);
+      controlled_.push_back(*joint);
     }
     for (const CollisionShape& shape : l.collisions) geom(out, shape, true);
     for (int child : l.childJoints) {
       const Joint& j = model.joints[child];
-      robotLink(out, model, j.childLink, j.origin, values, controlled);
+      robotLink(out, model, j.childLink, j.origin, values, isControlled);
     }
     out << "</body>\n";
   }
 
   const std::vector<std::string>& meshes() const { return meshes_; }
   /// The joints a control moves, in the order of the model's joints.
-  const std::vector<Joint>& actuated() const { return actuated_; }
+  const std::vector<Joint>& controlled() const { return controlled_; }
 
  private:
   double friction_;
   std::vector<std::string> meshes_;
-  std::vector<Joint> actuated_;
+  std::vector<Joint> controlled_;
 };
 
 struct Solver {
@@ -196,7 +196,7 @@ Solver parseSolver(const std::string& text) {
 
 /// The whole scene as MJCF, the objects where ODE's start state has them.
 std::string sceneMjcf(const Problem& problem, PlanningContext& ode, const Solver& solver,
-                      std::vector<Joint>& actuated) {
+                      std::vector<Joint>& controlled) {
   const kautham::physics::World& world = ode.world();
   const WorldLayout& layout = ode.layout();
   const std::vector<double>& start = ode.startState();
@@ -204,14 +204,15 @@ std::string sceneMjcf(const Problem& problem, PlanningContext& ode, const Solver
   std::ostringstream body;
   // The robot, welded to the world at its home pose.
   std::map<std::string, double> values;
-  std::map<std::string, bool> controlled;
+  std::map<std::string, bool> isControlled;
   const std::vector<double> joints = world.jointPositions();
   for (std::size_t i = 0; i < layout.joints.size(); ++i) {
     values[layout.joints[i].name] = joints[i];
-    controlled[layout.joints[i].name] = !layout.joints[i].held;
+    isControlled[layout.joints[i].name] = !layout.joints[i].held;
   }
   const KinematicModel& robot = problem.robot.model;
-  writer.robotLink(body, robot, robot.rootLink, problem.robot.home.isometry(), values, controlled);
+  writer.robotLink(body, robot, robot.rootLink, problem.robot.home.isometry(), values,
+                   isControlled);
   // Fixed objects as static geometry, the others as free bodies.
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
     const auto& info = layout.bodies[b];
@@ -235,7 +236,7 @@ std::string sceneMjcf(const Problem& problem, PlanningContext& ode, const Solver
     for (const CollisionShape& shape : kautham::core::shapesAtHome(object))
       writer.geom(body, shape, false);
   }
-  actuated = writer.actuated();
+  controlled = writer.controlled();
   std::ostringstream mjcf;
   const auto& g = problem.physics.gravity;
   mjcf << std::setprecision(12) << "<mujoco model=\"" << problem.name << "\">\n"
@@ -273,6 +274,12 @@ struct Outcome {
   double movedObjects = 0.0;   ///< objects moved more than 1 cm by the end
   double largestMove = 0.0;    ///< m
   std::vector<double> joints;  ///< every joint at the end, in the ODE world's order
+
+  /// Counts an object that moved `distance` metres from start to end.
+  void addMove(double distance) {
+    largestMove = std::max(largestMove, distance);
+    if (distance > 0.01) ++movedObjects;
+  }
 };
 
 Outcome runOde(PlanningContext& ode, const std::vector<std::vector<double>>& steps) {
@@ -292,17 +299,15 @@ Outcome runOde(PlanningContext& ode, const std::vector<std::vector<double>>& ste
   out.joints = world.jointPositions();
   for (std::size_t b = 0; b < ode.layout().bodies.size(); ++b) {
     if (ode.layout().bodies[b].role == BodyRole::Robot) continue;
-    const double d =
-        (WorldLayout::position(end.data(), b) - WorldLayout::position(start.data(), b)).norm();
-    out.largestMove = std::max(out.largestMove, d);
-    if (d > 0.01) ++out.movedObjects;
+    out.addMove(
+        (WorldLayout::position(end.data(), b) - WorldLayout::position(start.data(), b)).norm());
   }
   return out;
 }
 
 class MujocoScene {
  public:
-  MujocoScene(const std::string& mjcf, const std::vector<Joint>& actuated,
+  MujocoScene(const std::string& mjcf, const std::vector<Joint>& controlled,
               const WorldLayout& layout, const std::vector<double>& jointStart) {
     const std::filesystem::path file = std::filesystem::temp_directory_path() /
                                        ("kautham_mujoco_" + std::to_string(::getpid()) + ".xml");
@@ -314,14 +319,13 @@ class MujocoScene {
     data_ = mj_makeData(model_);
     jointStart_ = jointStart;
     // Each controlled joint's addresses, and which of the ODE world's joints it is.
-    for (const Joint& j : actuated) {
+    for (const Joint& j : controlled) {
       const int id = mj_name2id(model_, mjOBJ_JOINT, j.name.c_str());
       const auto it = std::find_if(layout.joints.begin(), layout.joints.end(),
                                    [&](const auto& info) { return info.name == j.name; });
       odeJoint_.push_back(static_cast<std::size_t>(it - layout.joints.begin()));
       qposAddress_.push_back(model_->jnt_qposadr[id]);
       dofAddress_.push_back(model_->jnt_dofadr[id]);
-      start_.push_back(jointStart[odeJoint_.back()]);
       effort_.push_back(j.maxEffort);
     }
     for (int b = 1; b < model_->nbody; ++b)
@@ -337,7 +341,8 @@ class MujocoScene {
 
   Outcome run(const std::vector<std::vector<double>>& steps) {
     mj_resetData(model_, data_);
-    for (std::size_t i = 0; i < qposAddress_.size(); ++i) data_->qpos[qposAddress_[i]] = start_[i];
+    for (std::size_t i = 0; i < qposAddress_.size(); ++i)
+      data_->qpos[qposAddress_[i]] = jointStart_[odeJoint_[i]];
     mj_forward(model_, data_);
     std::vector<Eigen::Vector3d> before;
     for (int b : freeBodies_)
@@ -348,9 +353,7 @@ class MujocoScene {
       for (std::size_t i = 0; i < odeJoint_.size(); ++i) {
         const int dof = dofAddress_[i];
         // ODE's robot has no gravity: hold the arm's weight as the last step's bias had it.
-        double applied = data_->qfrc_bias[dof];
-        applied += servoForce(i, v[odeJoint_[i]]);
-        data_->qfrc_applied[dof] = applied;
+        data_->qfrc_applied[dof] = data_->qfrc_bias[dof] + servoForce(i, v[odeJoint_[i]]);
       }
       mj_step(model_, data_);
       contacts += data_->ncon;
@@ -364,9 +367,7 @@ class MujocoScene {
     for (std::size_t k = 0; k < freeBodies_.size(); ++k) {
       const int b = freeBodies_[k];
       const Eigen::Vector3d now(data_->xpos[3 * b], data_->xpos[3 * b + 1], data_->xpos[3 * b + 2]);
-      const double d = (now - before[k]).norm();
-      out.largestMove = std::max(out.largestMove, d);
-      if (d > 0.01) ++out.movedObjects;
+      out.addMove((now - before[k]).norm());
     }
     return out;
   }
@@ -394,7 +395,6 @@ class MujocoScene {
   mjData* data_ = nullptr;
   std::vector<std::size_t> odeJoint_;
   std::vector<int> qposAddress_, dofAddress_;
-  std::vector<double> start_;
   std::vector<double> effort_;      ///< per controlled joint
   std::vector<double> jointStart_;  ///< every joint of the ODE world at the start
   std::vector<int> freeBodies_;
@@ -435,10 +435,10 @@ int main(int argc, char** argv) {
     std::vector<std::unique_ptr<MujocoScene>> scenes;
     for (const std::string& s : solvers) {
       const Solver solver = parseSolver(s);
-      std::vector<Joint> actuated;
-      const std::string mjcf = sceneMjcf(problem, ode, solver, actuated);
+      std::vector<Joint> controlled;
+      const std::string mjcf = sceneMjcf(problem, ode, solver, controlled);
       if (!mjcfFile.empty() && scenes.empty()) std::ofstream(mjcfFile) << mjcf;
-      scenes.push_back(std::make_unique<MujocoScene>(mjcf, actuated, ode.layout(), jointStart));
+      scenes.push_back(std::make_unique<MujocoScene>(mjcf, controlled, ode.layout(), jointStart));
     }
     std::printf(
         "%s, %s: %zu physics steps of %.3f s, ODE at %d iterations (sleep %s); ratio: "
