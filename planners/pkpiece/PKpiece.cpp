@@ -68,7 +68,8 @@ struct PKpiece::Candidate {
   std::uint64_t streamSeed = 0;  ///< its particles' random streams
   double fromPathBelief = 1.0;   ///< the path belief of the motion it grows from
   bool judged = false;           ///< verdict holds its particles' (possibly pruned) say
-  bool steered = false;          ///< aimed by GoalSteering (else random)
+  bool rivalled = false;  ///< kept over other judged estimates, or a goal candidate: see confirm
+  bool steered = false;   ///< aimed by GoalSteering (else random)
   ParticleVerdict verdict;
 };
 
@@ -137,6 +138,12 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   // 1 when the search ended because its trees hold max_motions motions, not at the time limit.
   addPlannerProgressProperty("motion_budget_spent INTEGER",
                              [this] { return std::to_string(motionBudgetSpent_ ? 1 : 0); });
+  // Expansions that kept a candidate, and those whose kept candidate was judged again
+  // (confirm_belief, confirm_unrivalled).
+  addPlannerProgressProperty("kept_candidates INTEGER",
+                             [this] { return std::to_string(keptCandidates_); });
+  addPlannerProgressProperty("confirmations INTEGER",
+                             [this] { return std::to_string(confirmations_); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
@@ -175,6 +182,8 @@ void PKpiece::clear() {
   steeredCandidates_ = 0;
   steeredValid_ = 0;
   steeredKept_ = 0;
+  keptCandidates_ = 0;
+  confirmations_ = 0;
   candidateFailures_ = FailureTally{};
   steeredFailures_ = FailureTally{};
   evaluator_.resetCounts();
@@ -453,7 +462,11 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
     bestGoalConfidence_ = std::max(bestGoalConfidence_, solutionConfidence(c));
     if (reachesGoal(c) && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
   }
-  if (best) return best;
+  // A goal candidate passed the goal bar on its own estimate: it is always judged again.
+  if (best) {
+    best->rivalled = true;
+    return best;
+  }
   if (rng_.uniform01() < settings_.randomCandidate) {
     Candidate& c =
         valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
@@ -463,11 +476,14 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
   // The first candidate of highest belief, as if all were judged in full: a candidate stops
   // as soon as it cannot beat the best so far, and none is judged once one is certain.
   const bool prune = settings_.pruneCandidates;
+  unsigned judged = 0;
   for (Candidate& c : valid) {
     if (prune && best && best->verdict.belief() >= 1.0) break;
     if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
+    ++judged;
     if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
   }
+  if (best) best->rivalled = judged > 1;
   return best;
 }
 
@@ -476,7 +492,12 @@ PKpiece::Motion* PKpiece::expand(Motion* from) {
   Candidate* chosen = chooseCandidate(valid, *from);
   if (!chosen) return nullptr;
   steeredKept_ += chosen->steered ? 1 : 0;
-  if (settings_.confirmBelief && withParticles()) confirm(*chosen, *from);
+  ++keptCandidates_;
+  if (settings_.confirmBelief && withParticles() &&
+      (chosen->rivalled || settings_.confirmUnrivalled)) {
+    confirm(*chosen, *from);
+    ++confirmations_;
+  }
   const double* start = physics::WorldStateSpace::values(from->state);
   const auto endPoses =
       from->poses->afterMotion(evaluator_.objectBodies(), start, chosen->run.end.data(),

@@ -237,6 +237,19 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
   EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
 }
 
+TEST(PKpieceTest, AKeptMotionJudgedAgainstNoOtherIsNotJudgedAgainWithoutConfirmUnrivalled) {
+  // Most expansions keep the first candidate judged, its particles all valid: no other
+  // estimate was weighed against it, so it is not judged again; the goal candidate that ended
+  // the search is.
+  const PlanRun run = plan(
+      "tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3,
+      {{"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}, {"confirm_unrivalled", "0"}});
+  ASSERT_TRUE(run.outcome.solved);
+  const long confirmed = std::stol(run.property("confirmations"));
+  EXPECT_GE(confirmed, 1);
+  EXPECT_LT(confirmed, std::stol(run.property("kept_candidates")));
+}
+
 TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBeliefs) {
   // The particles' estimate ends the search (no verification by whole executions).
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
@@ -244,6 +257,8 @@ TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBe
   ASSERT_TRUE(run.outcome.solved);
   ASSERT_GE(run.outcome.controls.size(), 2u);
   EXPECT_EQ(run.property("verifications"), "0");
+  // By default every kept candidate is judged again (confirm_belief, confirm_unrivalled).
+  EXPECT_EQ(run.property("confirmations"), run.property("kept_candidates"));
   double product = 1.0;
   for (double b : run.outcome.beliefs) product *= b;
   EXPECT_NEAR(std::stod(run.property("solution_path_belief")), product, 1e-6);

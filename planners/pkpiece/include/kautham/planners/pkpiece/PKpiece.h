@@ -187,6 +187,8 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t steeredCandidates_ = 0;  ///< candidates aimed by GoalSteering
   std::uint64_t steeredValid_ = 0;       ///< of those, the ones valid from their first step
   std::uint64_t steeredKept_ = 0;        ///< of those, the ones chosen
+  std::uint64_t keptCandidates_ = 0;     ///< expansions that kept a candidate
+  std::uint64_t confirmations_ = 0;      ///< kept candidates judged again (confirm)
   FailureTally candidateFailures_;       ///< candidates whose nominal run broke a rule
   FailureTally steeredFailures_;         ///< of those, the steered ones
   std::vector<double> solutionBeliefs_;

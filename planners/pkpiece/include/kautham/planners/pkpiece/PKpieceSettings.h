@@ -44,6 +44,10 @@ struct PKpieceSettings {
   /// estimates is biased upwards (the winner's curse), and the plan's estimated success is a
   /// product of such winners.
   bool confirmBelief;
+  /// With confirmBelief, a kept candidate no other estimate was weighed against is judged
+  /// again too: an ordinary motion kept because its particles all ended valid (the rest were
+  /// never judged), or the random one. Goal candidates are always judged again.
+  bool confirmUnrivalled;
   /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
   bool goalSteering;
   /// The goal steering aims by inverse kinematics and a line in joint space
@@ -213,6 +217,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(1)
                    .describe("measure the kept candidate's belief again with fresh particles "
                              "(the best of k estimates is biased upwards)"))
+          .add(&S::confirmUnrivalled,
+               Parameter::flag("confirm_unrivalled")
+                   .byDefault(1)
+                   .describe("with confirm_belief, also judge again a kept motion whose "
+                             "estimate was not weighed against another's (the first judged "
+                             "and certain, or the random one); goal candidates always are"))
           .add(&S::goalSteering,
                Parameter::flag("goal_steering")
                    .byDefault(1)
