@@ -68,7 +68,7 @@ struct PKpiece::Candidate {
   std::uint64_t streamSeed = 0;  ///< its particles' random streams
   double fromPathBelief = 1.0;   ///< the path belief of the motion it grows from
   bool judged = false;           ///< verdict holds its particles' (possibly pruned) say
-  bool rivalled = false;  ///< kept over other judged estimates, or a goal candidate: see confirm
+  bool rivalled = false;  ///< kept over others' estimates, or a goal candidate (confirmUnrivalled)
   bool steered = false;   ///< aimed by GoalSteering (else random)
   ParticleVerdict verdict;
 };
@@ -476,14 +476,15 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
   // The first candidate of highest belief, as if all were judged in full: a candidate stops
   // as soon as it cannot beat the best so far, and none is judged once one is certain.
   const bool prune = settings_.pruneCandidates;
-  unsigned judged = 0;
   for (Candidate& c : valid) {
     if (prune && best && best->verdict.belief() >= 1.0) break;
     if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
-    ++judged;
     if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
   }
-  if (best) best->rivalled = judged > 1;
+  // The first candidate, certain or alone, is kept whatever the others' estimates (pruned, they
+  // are never made): it won against none of them.
+  if (best)
+    best->rivalled = best != &valid.front() || (valid.size() > 1 && best->verdict.belief() < 1.0);
   return best;
 }
 

@@ -9,7 +9,9 @@
 // the order of the geometries whatever ran before (it did not: a run depended on the one
 // before it) and p-KPIECE's particles started to carry the objects a path moved. The goal steering
 // by inverse kinematics (session 12) changed p-KPIECE's plans: the recorded runs keep the Jacobian
-// steering (kinematic_steering 0), and one more records the default.
+// steering (kinematic_steering 0), and one more records the default. Session 38 stopped judging
+// again a kept candidate that won against no other (confirm_unrivalled 0): the runs recorded
+// before it set confirm_unrivalled 1 and keep their hashes, and one more records the default.
 
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
@@ -102,7 +104,7 @@ INSTANTIATE_TEST_SUITE_P(
         FixedRun{"EST", {{"range", "0.5"}}, 1, 300, 13854820495722332465ull},
         FixedRun{"PDST", {}, 1, 300, 9904051269849761384ull},
         FixedRun{"p-KPIECE",
-                 {{"particles", "4"}, {"kinematic_steering", "0"}},
+                 {{"particles", "4"}, {"kinematic_steering", "0"}, {"confirm_unrivalled", "1"}},
                  3,
                  25,
                  6920482750240045262ull},
@@ -111,7 +113,12 @@ INSTANTIATE_TEST_SUITE_P(
                  1,
                  60,
                  4613865332379332491ull},
-        FixedRun{"p-KPIECE", {{"particles", "4"}}, 3, 25, 2174275905699436899ull}),
+        FixedRun{"p-KPIECE",
+                 {{"particles", "4"}, {"confirm_unrivalled", "1"}},
+                 3,
+                 25,
+                 2174275905699436899ull},
+        FixedRun{"p-KPIECE", {{"particles", "4"}}, 3, 25, 5773549299231333681ull}),
     [](const ::testing::TestParamInfo<FixedRun>& param) {
       std::string name = param.param.planner + "_" + std::to_string(param.index);
       for (char& c : name)

@@ -237,17 +237,23 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
   EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
 }
 
-TEST(PKpieceTest, AKeptMotionJudgedAgainstNoOtherIsNotJudgedAgainWithoutConfirmUnrivalled) {
+TEST(PKpieceTest, AKeptMotionJudgedAgainstNoOtherIsJudgedAgainOnlyWithConfirmUnrivalled) {
   // Most expansions keep the first candidate judged, its particles all valid: no other
-  // estimate was weighed against it, so it is not judged again; the goal candidate that ended
-  // the search is.
-  const PlanRun run = plan(
-      "tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3,
-      {{"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}, {"confirm_unrivalled", "0"}});
-  ASSERT_TRUE(run.outcome.solved);
-  const long confirmed = std::stol(run.property("confirmations"));
+  // estimate was weighed against it, so by default it is not judged again; the goal candidate
+  // that ended the search is.
+  const std::vector<ParameterOverride> small = {
+      {"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}};
+  const PlanRun unrivalledOnce = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, small);
+  ASSERT_TRUE(unrivalledOnce.outcome.solved);
+  const long confirmed = std::stol(unrivalledOnce.property("confirmations"));
   EXPECT_GE(confirmed, 1);
-  EXPECT_LT(confirmed, std::stol(run.property("kept_candidates")));
+  EXPECT_LT(confirmed, std::stol(unrivalledOnce.property("kept_candidates")));
+  // confirm_unrivalled judges every kept candidate again.
+  std::vector<ParameterOverride> always = small;
+  always.push_back({"confirm_unrivalled", "1"});
+  const PlanRun everyOne = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, always);
+  ASSERT_TRUE(everyOne.outcome.solved);
+  EXPECT_EQ(everyOne.property("confirmations"), everyOne.property("kept_candidates"));
 }
 
 TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBeliefs) {
@@ -257,8 +263,6 @@ TEST(PKpieceTest, EachControlIsOneCandidateAndThePathBeliefIsTheProductOfTheirBe
   ASSERT_TRUE(run.outcome.solved);
   ASSERT_GE(run.outcome.controls.size(), 2u);
   EXPECT_EQ(run.property("verifications"), "0");
-  // By default every kept candidate is judged again (confirm_belief, confirm_unrivalled).
-  EXPECT_EQ(run.property("confirmations"), run.property("kept_candidates"));
   double product = 1.0;
   for (double b : run.outcome.beliefs) product *= b;
   EXPECT_NEAR(std::stod(run.property("solution_path_belief")), product, 1e-6);

@@ -46,7 +46,9 @@ struct PKpieceSettings {
   bool confirmBelief;
   /// With confirmBelief, a kept candidate no other estimate was weighed against is judged
   /// again too: an ordinary motion kept because its particles all ended valid (the rest were
-  /// never judged), or the random one. Goal candidates are always judged again.
+  /// never judged), or the random one. Goal candidates are always judged again. Off by default
+  /// since session 38: on the dense suite most kept motions are such, and judging them again
+  /// cost a third of the planning time for no better plans (docs/planners.md).
   bool confirmUnrivalled;
   /// In a goal-biased expansion, one of the k candidates is aimed at the goal (GoalSteering).
   bool goalSteering;
@@ -219,7 +221,7 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                              "(the best of k estimates is biased upwards)"))
           .add(&S::confirmUnrivalled,
                Parameter::flag("confirm_unrivalled")
-                   .byDefault(1)
+                   .byDefault(0)
                    .describe("with confirm_belief, also judge again a kept motion whose "
                              "estimate was not weighed against another's (the first judged "
                              "and certain, or the random one); goal candidates always are"))
