@@ -224,7 +224,8 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(0)
                    .describe("with confirm_belief, also judge again a kept motion whose "
                              "estimate was not weighed against another's (the first judged "
-                             "and certain, or the random one); goal candidates always are"))
+                             "and certain, the only valid one, or the random one); goal "
+                             "candidates always are"))
           .add(&S::goalSteering,
                Parameter::flag("goal_steering")
                    .byDefault(1)
