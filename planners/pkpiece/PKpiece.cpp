@@ -294,60 +294,77 @@ PKpiece::Motion* PKpiece::selectMotion() {
   return selectInCell(*cell->data);
 }
 
-std::vector<PKpiece::Candidate> PKpiece::sampleCandidates(const Motion& from) {
+PKpiece::CandidateDraw PKpiece::drawCandidates(const Motion& from) {
   const auto& si = context_.spaceInformation();
   const unsigned minSteps = si->getMinControlDuration();
   const unsigned maxSteps = si->getMaxControlDuration();
   const std::size_t dimension = si->getControlSpace()->getDimension();
-  const double* start = physics::WorldStateSpace::values(from.state);
-  // Everything random is drawn first; the nominal runs then go to the worker processes too.
-  std::vector<NominalMotion> motions(settings_.candidates);
-  for (NominalMotion& motion : motions) {
+  // Everything random is drawn first, whichever candidates then run: a candidate is the same
+  // however many run before it.
+  CandidateDraw draw;
+  draw.motions.resize(settings_.candidates);
+  for (NominalMotion& motion : draw.motions) {
     motion.control.resize(dimension);
     for (double& u : motion.control) u = rng_.uniformReal(-1.0, 1.0);
     motion.steps = static_cast<unsigned>(
         rng_.uniformInt(static_cast<int>(minSteps), static_cast<int>(maxSteps)));
   }
-  // A goal-biased expansion tries one candidate aimed at the goal (GoalSteering).
-  bool steered = false;
+  // A goal-biased expansion tries one candidate aimed at the goal (GoalSteering), first.
   if (steerNext_ && settings_.goalSteering)
-    if (std::optional<NominalMotion> aimed = steering_.towardsGoal(start)) {
-      motions[0] = *aimed;
-      steered = true;
+    if (std::optional<NominalMotion> aimed =
+            steering_.towardsGoal(physics::WorldStateSpace::values(from.state))) {
+      draw.motions[0] = *aimed;
+      draw.steered = true;
       ++steeredCandidates_;
     }
+  // Pointers into valid stay put while it grows (chooseCandidate holds them).
+  draw.valid.reserve(draw.motions.size());
+  return draw;
+}
+
+void PKpiece::runCandidates(CandidateDraw& draw, const Motion& from, std::size_t upTo) {
+  if (upTo <= draw.ran) return;
+  const double* start = physics::WorldStateSpace::values(from.state);
+  const std::vector<NominalMotion> motions(draw.motions.begin() + draw.ran,
+                                           draw.motions.begin() + upTo);
   // Every candidate runs on through the goal, so that settleInGoal can end it deep inside: one
   // that stopped where it entered would end on the region's border (with particles or without).
+  // Several go to the worker processes together.
   std::vector<NominalRun> runs = evaluator_.runNominals(start, motions, true);
   candidateCount_ += motions.size();
-  std::vector<Candidate> valid;
-  for (std::size_t c = 0; c < motions.size(); ++c) {
-    tallyBrokenRule(runs[c], steered && c == 0);
-    if (runs[c].steps == 0) continue;  // invalid from its first step
-    Candidate candidate;
-    candidate.control = std::move(motions[c].control);
-    candidate.run = std::move(runs[c]);
-    // A run through the goal that never gets deep enough to end a plan is an ordinary motion:
-    // judged in full as a goal candidate, its particles would be spent for nothing.
-    if (candidate.run.reachedGoal && !getsDeepEnough(candidate.run)) {
-      candidate.run.reachedGoal = false;
-      candidate.run.goalFrom = 0;
-    }
-    candidate.streamSeed = nextStreamSeed();
-    candidate.fromPathBelief = from.pathBelief;
-    candidate.steered = steered && c == 0;
-    steeredValid_ += candidate.steered ? 1 : 0;
-    candidate.pieceEnds = pieceEnds(candidate.run);
-    candidate.recordAfter = candidate.pieceEnds;
-    for (unsigned s = candidate.run.goalFrom; s > 0 && s <= candidate.run.steps; ++s)
-      candidate.recordAfter.push_back(s);
-    std::sort(candidate.recordAfter.begin(), candidate.recordAfter.end());
-    candidate.recordAfter.erase(
-        std::unique(candidate.recordAfter.begin(), candidate.recordAfter.end()),
-        candidate.recordAfter.end());
-    valid.push_back(std::move(candidate));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const bool steered = draw.steered && draw.ran + i == 0;
+    tallyBrokenRule(runs[i], steered);
+    if (runs[i].steps == 0) continue;  // invalid from its first step
+    draw.valid.push_back(admit(motions[i].control, std::move(runs[i]), steered, from));
   }
-  return valid;
+  draw.ran = upTo;
+}
+
+PKpiece::Candidate PKpiece::admit(const std::vector<double>& control, NominalRun&& run,
+                                  bool steered, const Motion& from) {
+  Candidate candidate;
+  candidate.control = control;
+  candidate.run = std::move(run);
+  // A run through the goal that never gets deep enough to end a plan is an ordinary motion:
+  // judged in full as a goal candidate, its particles would be spent for nothing.
+  if (candidate.run.reachedGoal && !getsDeepEnough(candidate.run)) {
+    candidate.run.reachedGoal = false;
+    candidate.run.goalFrom = 0;
+  }
+  candidate.streamSeed = nextStreamSeed();
+  candidate.fromPathBelief = from.pathBelief;
+  candidate.steered = steered;
+  steeredValid_ += steered ? 1 : 0;
+  candidate.pieceEnds = pieceEnds(candidate.run);
+  candidate.recordAfter = candidate.pieceEnds;
+  for (unsigned s = candidate.run.goalFrom; s > 0 && s <= candidate.run.steps; ++s)
+    candidate.recordAfter.push_back(s);
+  std::sort(candidate.recordAfter.begin(), candidate.recordAfter.end());
+  candidate.recordAfter.erase(
+      std::unique(candidate.recordAfter.begin(), candidate.recordAfter.end()),
+      candidate.recordAfter.end());
+  return candidate;
 }
 
 void PKpiece::judge(Candidate& candidate, const Motion& from, double toBeat) {
@@ -399,7 +416,7 @@ void PKpiece::settleInGoal(Candidate& candidate) const {
   // border, which a particle (or an execution with control noise) misses as often as it hits.
   // It ends at the step where most particles are inside too, and of equals (always, without
   // particles) where the nominal run is nearest the goal point.
-  // Only a step deep enough in the region may end a plan (goal_margin); sampleCandidates made
+  // Only a step deep enough in the region may end a plan (goal_margin); admit made
   // a run that gets no deeper an ordinary motion, so some step here is deep enough.
   const bool particles = withParticles();
   NominalRun& run = candidate.run;
@@ -451,8 +468,53 @@ bool PKpiece::reachesGoal(const Candidate& c) const {
          solutionConfidence(c) >= settings_.goalConfidence;
 }
 
-PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, const Motion& from) {
+PKpiece::Candidate* PKpiece::chooseCandidate(CandidateDraw& draw, const Motion& from) {
+  std::optional<bool> keepRandom;
+  if (settings_.lazyCandidates && settings_.pruneCandidates)
+    if (Candidate* certain = firstCertain(draw, from, keepRandom)) return certain;
+  // Every candidate run (lazily, the ones judged so far keep their verdicts).
+  runCandidates(draw, from, draw.motions.size());
+  std::vector<Candidate>& valid = draw.valid;
   if (valid.empty()) return nullptr;
+  if (Candidate* goal = bestGoalCandidate(valid, from)) return goal;
+  if (!keepRandom) keepRandom = rng_.uniform01() < settings_.randomCandidate;
+  if (*keepRandom) {
+    Candidate& c =
+        valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
+    if (!c.judged) judge(c, from, -1.0);
+    return &c;
+  }
+  return mostRobust(valid, from);
+}
+
+PKpiece::Candidate* PKpiece::firstCertain(CandidateDraw& draw, const Motion& from,
+                                          std::optional<bool>& keepRandom) {
+  // As mostRobust judges them, in order, but each run only when the ones before leave the
+  // choice open. A run that reaches the goal stops it unjudged: goal candidates come first.
+  Candidate* best = nullptr;
+  while (draw.ran < draw.motions.size()) {
+    const std::size_t before = draw.valid.size();
+    runCandidates(draw, from, draw.ran + 1);
+    if (draw.valid.size() == before) continue;  // invalid from its first step
+    Candidate& c = draw.valid.back();
+    if (c.run.reachedGoal) return nullptr;
+    // The random keep needs every candidate run: drawn once there is one to keep, as when all
+    // run first (never in an expansion without a valid candidate, nor before the goal step).
+    if (!keepRandom) {
+      keepRandom = rng_.uniform01() < settings_.randomCandidate;
+      if (*keepRandom) return nullptr;
+    }
+    judge(c, from, best ? best->verdict.belief() : -1.0);
+    if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+    if (best->verdict.belief() >= 1.0) {
+      best->rivalled = best != &draw.valid.front();
+      return best;
+    }
+  }
+  return nullptr;  // none certain: mostRobust chooses among them, all judged
+}
+
+PKpiece::Candidate* PKpiece::bestGoalCandidate(std::vector<Candidate>& valid, const Motion& from) {
   // A candidate that reaches the goal ends the search: the most robust of those is kept.
   Candidate* best = nullptr;
   for (Candidate& c : valid) {
@@ -463,19 +525,15 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
     if (reachesGoal(c) && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
   }
   // A goal candidate passed the goal bar on its own estimate: it is always judged again.
-  if (best) {
-    best->rivalled = true;
-    return best;
-  }
-  if (rng_.uniform01() < settings_.randomCandidate) {
-    Candidate& c =
-        valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
-    if (!c.judged) judge(c, from, -1.0);
-    return &c;
-  }
+  if (best) best->rivalled = true;
+  return best;
+}
+
+PKpiece::Candidate* PKpiece::mostRobust(std::vector<Candidate>& valid, const Motion& from) {
   // The first candidate of highest belief, as if all were judged in full: a candidate stops
   // as soon as it cannot beat the best so far, and none is judged once one is certain.
   const bool prune = settings_.pruneCandidates;
+  Candidate* best = nullptr;
   for (Candidate& c : valid) {
     if (prune && best && best->verdict.belief() >= 1.0) break;
     if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
@@ -489,8 +547,8 @@ PKpiece::Candidate* PKpiece::chooseCandidate(std::vector<Candidate>& valid, cons
 }
 
 PKpiece::Motion* PKpiece::expand(Motion* from) {
-  std::vector<Candidate> valid = sampleCandidates(*from);
-  Candidate* chosen = chooseCandidate(valid, *from);
+  CandidateDraw draw = drawCandidates(*from);
+  Candidate* chosen = chooseCandidate(draw, *from);
   if (!chosen) return nullptr;
   steeredKept_ += chosen->steered ? 1 : 0;
   ++keptCandidates_;

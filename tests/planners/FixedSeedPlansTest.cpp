@@ -12,6 +12,9 @@
 // steering (kinematic_steering 0), and one more records the default. Session 38 stopped judging
 // again a kept candidate that won against no other (confirm_unrivalled 0): the runs recorded
 // before it set confirm_unrivalled 1 and keep their hashes, and one more records the default.
+// Session 39 ran a candidate's nominal motion only when the choice needs it (lazy_candidates 1):
+// the p-KPIECE runs recorded before set lazy_candidates 0 and keep their hashes, and two more
+// record the default, with and without uncertainty.
 
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
@@ -104,21 +107,37 @@ INSTANTIATE_TEST_SUITE_P(
         FixedRun{"EST", {{"range", "0.5"}}, 1, 300, 13854820495722332465ull},
         FixedRun{"PDST", {}, 1, 300, 9904051269849761384ull},
         FixedRun{"p-KPIECE",
-                 {{"particles", "4"}, {"kinematic_steering", "0"}, {"confirm_unrivalled", "1"}},
+                 {{"particles", "4"},
+                  {"kinematic_steering", "0"},
+                  {"confirm_unrivalled", "1"},
+                  {"lazy_candidates", "0"}},
                  3,
                  25,
                  6920482750240045262ull},
         FixedRun{"p-KPIECE",
-                 {{"uncertainty", "false"}, {"displacement", "0.2"}, {"kinematic_steering", "0"}},
+                 {{"uncertainty", "false"},
+                  {"displacement", "0.2"},
+                  {"kinematic_steering", "0"},
+                  {"lazy_candidates", "0"}},
                  1,
                  60,
                  4613865332379332491ull},
         FixedRun{"p-KPIECE",
-                 {{"particles", "4"}, {"confirm_unrivalled", "1"}},
+                 {{"particles", "4"}, {"confirm_unrivalled", "1"}, {"lazy_candidates", "0"}},
                  3,
                  25,
                  2174275905699436899ull},
-        FixedRun{"p-KPIECE", {{"particles", "4"}}, 3, 25, 5773549299231333681ull}),
+        FixedRun{"p-KPIECE",
+                 {{"particles", "4"}, {"lazy_candidates", "0"}},
+                 3,
+                 25,
+                 5773549299231333681ull},
+        FixedRun{"p-KPIECE", {{"particles", "4"}}, 3, 25, 5848371871312194375ull},
+        FixedRun{"p-KPIECE",
+                 {{"uncertainty", "false"}, {"displacement", "0.2"}},
+                 1,
+                 60,
+                 8211154671290947186ull}),
     [](const ::testing::TestParamInfo<FixedRun>& param) {
       std::string name = param.param.planner + "_" + std::to_string(param.index);
       for (char& c : name)

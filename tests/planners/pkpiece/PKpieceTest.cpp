@@ -205,8 +205,9 @@ TEST(PKpieceTest, ACappedLastMoveInStridesEndsOnTheGoalPointNotAStrideIntoTheReg
 }
 
 TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
+  // Without whole-plan verification: this scene's plans rarely pass it (see below).
   const PlanRun run = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2,
-                           {{"particles", "5"}, {"candidates", "4"}});
+                           {{"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}});
   ASSERT_TRUE(run.outcome.solved);
   EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
   const long candidates = std::stol(run.property("candidates"));
@@ -223,9 +224,10 @@ TEST(PKpieceTest, WithUncertaintyJudgesEveryCandidateByItsParticles) {
 }
 
 TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
-  // Without whole-plan verification: this scene's plans rarely pass it (see below).
+  // Without whole-plan verification: this scene's plans rarely pass it (see below). Every
+  // candidate run first either way: judged in full, each one is needed.
   const std::vector<ParameterOverride> small = {
-      {"particles", "6"}, {"candidates", "4"}, {"verify_runs", "0"}};
+      {"particles", "6"}, {"candidates", "4"}, {"verify_runs", "0"}, {"lazy_candidates", "0"}};
   std::vector<ParameterOverride> full = small;
   full.push_back({"prune_candidates", "0"});
   const PlanRun pruned = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
@@ -235,6 +237,40 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
   EXPECT_EQ(pruned.outcome.beliefs, judgedInFull.outcome.beliefs);
   EXPECT_EQ(pruned.property("candidates"), judgedInFull.property("candidates"));
   EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
+}
+
+TEST(PKpieceTest, LazyCandidatesRunOnlyTheNominalMotionsTheChoiceNeeds) {
+  // Most expansions keep their first candidate, its particles all valid: the other k - 1 are
+  // then never run. Run all first (lazy_candidates 0), every one is.
+  const std::vector<ParameterOverride> small = {
+      {"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}};
+  std::vector<ParameterOverride> allFirst = small;
+  allFirst.push_back({"lazy_candidates", "0"});
+  const PlanRun lazy = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
+  const PlanRun eager = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, allFirst);
+  ASSERT_TRUE(lazy.outcome.solved);
+  ASSERT_TRUE(eager.outcome.solved);
+  const auto perKept = [](const PlanRun& run) {
+    return std::stod(run.property("candidates")) / std::stod(run.property("kept_candidates"));
+  };
+  EXPECT_GE(perKept(lazy), 1.0);
+  EXPECT_LT(perKept(lazy), 2.0);
+  EXPECT_GE(perKept(eager), 4.0 * 0.9);  // k per expansion (one may run into nothing)
+}
+
+TEST(PKpieceTest, WithOneCandidateLazyOrNotMakeTheSamePlan) {
+  // With k = 1 there is nothing to leave unrun: the same expansions, the same choices, the same
+  // plan (without verification, the first goal candidate good enough ends the search either way).
+  const std::vector<ParameterOverride> one = {
+      {"particles", "5"}, {"candidates", "1"}, {"verify_runs", "0"}};
+  std::vector<ParameterOverride> allFirst = one;
+  allFirst.push_back({"lazy_candidates", "0"});
+  const PlanRun lazy = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, one);
+  const PlanRun eager = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, allFirst);
+  ASSERT_TRUE(lazy.outcome.solved);
+  expectSameControls(lazy, eager);
+  EXPECT_EQ(lazy.outcome.beliefs, eager.outcome.beliefs);
+  EXPECT_EQ(lazy.property("particles"), eager.property("particles"));
 }
 
 TEST(PKpieceTest, AKeptMotionJudgedAgainstNoOtherIsJudgedAgainOnlyWithConfirmUnrivalled) {
@@ -435,7 +471,9 @@ TEST(PKpieceTest, SaysWhyItsParticlesFailedTheSameAtAnyThreads) {
   // The diagnosis behind `kautham plan`'s "failed" line: each failed particle once, under the
   // rule its first invalid state broke (named by the object that broke it), most frequent
   // first; the particles are the same at any --threads, so the tally is too.
-  const std::vector<ParameterOverride> small = {{"particles", "5"}, {"candidates", "4"}};
+  // A fixed amount of search, solved or not.
+  const std::vector<ParameterOverride> small = {
+      {"particles", "5"}, {"candidates", "4"}, {"max_motions", "300"}};
   const PlanRun one = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
   const PlanRun two =
       plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, withTwoThreads(small));

@@ -114,7 +114,22 @@ class PKpiece : public ompl::base::Planner,
   double selectionBelief(const Motion& motion) const;
   Grid::Coord cellOf(const std::vector<double>& state) const;
   bool objectsMoved(const double* start, const double* state) const;
-  std::vector<Candidate> sampleCandidates(const Motion& from);
+  /// The k candidates of one expansion: drawn together, their nominal runs made in order as
+  /// the choice asks for them (lazyCandidates), or all at once.
+  struct CandidateDraw {
+    std::vector<NominalMotion> motions;
+    bool steered = false;          ///< motions[0] is aimed by GoalSteering
+    std::size_t ran = 0;           ///< motions[0, ran) have had their nominal runs
+    std::vector<Candidate> valid;  ///< of those, the ones valid from their first step, in order
+  };
+  /// Draws an expansion's k candidates from `from` (none run yet).
+  CandidateDraw drawCandidates(const Motion& from);
+  /// Makes the nominal runs of draw's motions up to `upTo` (together, over the worker
+  /// processes) and admits the valid ones.
+  void runCandidates(CandidateDraw& draw, const Motion& from, std::size_t upTo);
+  /// A candidate made of a valid nominal run, ready to be judged.
+  Candidate admit(const std::vector<double>& control, NominalRun&& run, bool steered,
+                  const Motion& from);
   /// Runs the candidate's particles (or judges its nominal run), pruned against `toBeat`.
   void judge(Candidate& candidate, const Motion& from, double toBeat);
   /// Judges the kept candidate again, in full, by particles with fresh random streams, as it
@@ -123,7 +138,17 @@ class PKpiece : public ompl::base::Planner,
   void confirm(Candidate& candidate, const Motion& from);
   /// The candidate's particle motions from the end of `from`, with its random streams.
   ParticleRequest particleRequest(const Candidate& candidate, const Motion& from) const;
-  Candidate* chooseCandidate(std::vector<Candidate>& valid, const Motion& from);
+  /// The candidate the expansion keeps (null if none is valid): a goal candidate good enough
+  /// to end the search, else a random one (randomCandidate), else the most robust.
+  Candidate* chooseCandidate(CandidateDraw& draw, const Motion& from);
+  /// Lazily: runs and judges the candidates in order until one is certain, and returns it;
+  /// null if none is, or a run reaches the goal, or the random keep was drawn (`keepRandom`,
+  /// drawn at the first valid candidate): then every one is needed.
+  Candidate* firstCertain(CandidateDraw& draw, const Motion& from, std::optional<bool>& keepRandom);
+  /// The goal candidate of highest belief whose plan is estimated to succeed often enough.
+  Candidate* bestGoalCandidate(std::vector<Candidate>& valid, const Motion& from);
+  /// The first candidate of highest belief (pruneCandidates: judged only as far as needed).
+  Candidate* mostRobust(std::vector<Candidate>& valid, const Motion& from);
   bool reachesGoal(const Candidate& candidate) const;
   /// The estimated success of the plan that would end with the candidate (goalConfidence).
   double solutionConfidence(const Candidate& candidate) const;

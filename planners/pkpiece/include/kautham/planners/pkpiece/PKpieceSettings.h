@@ -40,6 +40,12 @@ struct PKpieceSettings {
   bool objectSpread;
   /// Stop judging a candidate once it cannot beat the best one so far (the same choice).
   bool pruneCandidates;
+  /// With pruneCandidates, a candidate's nominal motion is run only when the choice needs it:
+  /// in order, until one is kept certain (its belief 1), the rest never run. One whose run
+  /// reaches the goal, or a random keep, has every candidate run as before. The choice differs
+  /// from running all first only where a candidate after a certain one would have reached the
+  /// goal: on the dense suite most expansions keep their first candidate (the goal steering's).
+  bool lazyCandidates;
   /// The kept candidate's belief is measured again by fresh particles: the best of k
   /// estimates is biased upwards (the winner's curse), and the plan's estimated success is a
   /// product of such winners.
@@ -214,6 +220,12 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(1)
                    .describe("stop judging a candidate once it cannot beat the best so far (the "
                              "same choice, less work)"))
+          .add(&S::lazyCandidates,
+               Parameter::flag("lazy_candidates")
+                   .byDefault(1)
+                   .describe("with prune_candidates, run a candidate's nominal motion only when "
+                             "the choice needs it: in order until one is certain (every one if "
+                             "one reaches the goal, or for a random keep); 0: all k first"))
           .add(&S::confirmBelief,
                Parameter::flag("confirm_belief")
                    .byDefault(1)
