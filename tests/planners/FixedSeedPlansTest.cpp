@@ -137,7 +137,7 @@ INSTANTIATE_TEST_SUITE_P(
                  {{"uncertainty", "false"}, {"displacement", "0.2"}},
                  1,
                  60,
-                 8211154671290947186ull}),
+                 11584540075808882745ull}),
     [](const ::testing::TestParamInfo<FixedRun>& param) {
       std::string name = param.param.planner + "_" + std::to_string(param.index);
       for (char& c : name)

@@ -1,6 +1,7 @@
 // p-KPIECE and o-KPIECE on real problems, with the real physics and the real uncertainty
 // sampling; every plan is checked by replaying it.
 
+#include <cstdint>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -239,15 +240,21 @@ TEST(PKpieceTest, PruningCandidatesChoosesTheSameMotionsWithFewerParticles) {
   EXPECT_LT(std::stol(pruned.property("particles")), std::stol(judgedInFull.property("particles")));
 }
 
+/// pusher_cans_uncertain planned with `k` candidates of 5 particles, without verification, with
+/// each candidate run only when the choice needs it (first) and with all k run first (second).
+std::pair<PlanRun, PlanRun> lazyAndAllFirst(std::uint32_t seed, const std::string& k) {
+  const std::vector<ParameterOverride> lazy = {
+      {"particles", "5"}, {"candidates", k}, {"verify_runs", "0"}};
+  std::vector<ParameterOverride> allFirst = lazy;
+  allFirst.push_back({"lazy_candidates", "0"});
+  return {plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", seed, lazy),
+          plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", seed, allFirst)};
+}
+
 TEST(PKpieceTest, LazyCandidatesRunOnlyTheNominalMotionsTheChoiceNeeds) {
   // Most expansions keep their first candidate, its particles all valid: the other k - 1 are
   // then never run. Run all first (lazy_candidates 0), every one is.
-  const std::vector<ParameterOverride> small = {
-      {"particles", "5"}, {"candidates", "4"}, {"verify_runs", "0"}};
-  std::vector<ParameterOverride> allFirst = small;
-  allFirst.push_back({"lazy_candidates", "0"});
-  const PlanRun lazy = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, small);
-  const PlanRun eager = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 2, allFirst);
+  const auto [lazy, eager] = lazyAndAllFirst(2, "4");
   ASSERT_TRUE(lazy.outcome.solved);
   ASSERT_TRUE(eager.outcome.solved);
   const auto perKept = [](const PlanRun& run) {
@@ -261,12 +268,7 @@ TEST(PKpieceTest, LazyCandidatesRunOnlyTheNominalMotionsTheChoiceNeeds) {
 TEST(PKpieceTest, WithOneCandidateLazyOrNotMakeTheSamePlan) {
   // With k = 1 there is nothing to leave unrun: the same expansions, the same choices, the same
   // plan (without verification, the first goal candidate good enough ends the search either way).
-  const std::vector<ParameterOverride> one = {
-      {"particles", "5"}, {"candidates", "1"}, {"verify_runs", "0"}};
-  std::vector<ParameterOverride> allFirst = one;
-  allFirst.push_back({"lazy_candidates", "0"});
-  const PlanRun lazy = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, one);
-  const PlanRun eager = plan("tests/data/pusher_cans_uncertain.xml", "p-KPIECE", 3, allFirst);
+  const auto [lazy, eager] = lazyAndAllFirst(3, "1");
   ASSERT_TRUE(lazy.outcome.solved);
   expectSameControls(lazy, eager);
   EXPECT_EQ(lazy.outcome.beliefs, eager.outcome.beliefs);
