@@ -477,7 +477,7 @@ PKpiece::Candidate* PKpiece::chooseCandidate(CandidateDraw& draw, const Motion& 
   std::vector<Candidate>& valid = draw.valid;
   if (valid.empty()) return nullptr;
   if (Candidate* goal = bestGoalCandidate(valid, from)) return goal;
-  if (!keepRandom) keepRandom = rng_.uniform01() < settings_.randomCandidate;
+  if (!keepRandom) keepRandom = drawRandomKeep();
   if (*keepRandom) {
     Candidate& c =
         valid[static_cast<std::size_t>(rng_.uniformInt(0, static_cast<int>(valid.size()) - 1))];
@@ -501,17 +501,32 @@ PKpiece::Candidate* PKpiece::firstCertain(CandidateDraw& draw, const Motion& fro
     // The random keep needs every candidate run: drawn once there is one to keep, as when all
     // run first (never in an expansion without a valid candidate, nor before the goal step).
     if (!keepRandom) {
-      keepRandom = rng_.uniform01() < settings_.randomCandidate;
+      keepRandom = drawRandomKeep();
       if (*keepRandom) return nullptr;
     }
-    judge(c, from, best ? best->verdict.belief() : -1.0);
-    if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
-    if (best->verdict.belief() >= 1.0) {
-      best->rivalled = best != &draw.valid.front();
+    judgeInTurn(c, best, from);
+    if (isCertain(best)) {
+      markRivalled(*best, draw.valid);
       return best;
     }
   }
   return nullptr;  // none certain: mostRobust chooses among them, all judged
+}
+
+bool PKpiece::drawRandomKeep() { return rng_.uniform01() < settings_.randomCandidate; }
+
+bool PKpiece::isCertain(const Candidate* c) { return c && c->verdict.belief() >= 1.0; }
+
+void PKpiece::judgeInTurn(Candidate& c, Candidate*& best, const Motion& from) {
+  const bool prune = settings_.pruneCandidates;
+  if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
+  if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+}
+
+void PKpiece::markRivalled(Candidate& best, const std::vector<Candidate>& valid) {
+  // The first candidate, certain or alone, is kept whatever the others' estimates (pruned, they
+  // are never made): it won against none of them.
+  best.rivalled = &best != &valid.front() || (valid.size() > 1 && best.verdict.belief() < 1.0);
 }
 
 PKpiece::Candidate* PKpiece::bestGoalCandidate(std::vector<Candidate>& valid, const Motion& from) {
@@ -532,17 +547,12 @@ PKpiece::Candidate* PKpiece::bestGoalCandidate(std::vector<Candidate>& valid, co
 PKpiece::Candidate* PKpiece::mostRobust(std::vector<Candidate>& valid, const Motion& from) {
   // The first candidate of highest belief, as if all were judged in full: a candidate stops
   // as soon as it cannot beat the best so far, and none is judged once one is certain.
-  const bool prune = settings_.pruneCandidates;
   Candidate* best = nullptr;
   for (Candidate& c : valid) {
-    if (prune && best && best->verdict.belief() >= 1.0) break;
-    if (!c.judged) judge(c, from, prune && best ? best->verdict.belief() : -1.0);
-    if (!c.verdict.pruned && (!best || c.verdict.belief() > best->verdict.belief())) best = &c;
+    if (settings_.pruneCandidates && isCertain(best)) break;
+    judgeInTurn(c, best, from);
   }
-  // The first candidate, certain or alone, is kept whatever the others' estimates (pruned, they
-  // are never made): it won against none of them.
-  if (best)
-    best->rivalled = best != &valid.front() || (valid.size() > 1 && best->verdict.belief() < 1.0);
+  if (best) markRivalled(*best, valid);
   return best;
 }
 

@@ -149,6 +149,14 @@ class PKpiece : public ompl::base::Planner,
   Candidate* bestGoalCandidate(std::vector<Candidate>& valid, const Motion& from);
   /// The first candidate of highest belief (pruneCandidates: judged only as far as needed).
   Candidate* mostRobust(std::vector<Candidate>& valid, const Motion& from);
+  /// Whether this expansion keeps a random valid candidate (randomCandidate).
+  bool drawRandomKeep();
+  static bool isCertain(const Candidate* candidate);
+  /// Judges `c` (unless it was) against `best`, the best of the candidates before it, pruned
+  /// with pruneCandidates, and makes it the best if it beats it.
+  void judgeInTurn(Candidate& c, Candidate*& best, const Motion& from);
+  /// Whether the kept `best` won against other candidates' estimates (confirmUnrivalled).
+  static void markRivalled(Candidate& best, const std::vector<Candidate>& valid);
   bool reachesGoal(const Candidate& candidate) const;
   /// The estimated success of the plan that would end with the candidate (goalConfidence).
   double solutionConfidence(const Candidate& candidate) const;
