@@ -39,7 +39,10 @@ double boundingRadius(const core::Shape& shape) {
 
 GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Eigen::Vector3d& size,
                              const Eigen::Vector3d& center)
-    : layout_(std::move(layout)), center_(center), boundingRadius_(0.5 * size.norm()) {
+    : layout_(std::move(layout)),
+      center_(center),
+      halfSize_(0.5 * size),
+      boundingRadius_(0.5 * size.norm()) {
   if (!(size.minCoeff() > 0.0) || !size.allFinite())
     throw std::invalid_argument("a goal's free space needs three positive box sides");
   Eigen::Vector3i count;
@@ -55,13 +58,14 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
       }
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {
     if (layout_->bodies[b].role != BodyRole::Movable) continue;
-    MovableBody movable{b, {}, 0.0};
+    MovableBody movable{b, {}, {}, 0.0};
     for (std::size_t s = 0; s < layout_->shapes.size(); ++s) {
       const ShapeInfo& shape = layout_->shapes[s];
       if (shape.body != static_cast<int>(b)) continue;
       movable.shapes.push_back(s);
+      movable.shapeRadii.push_back(boundingRadius(shape.shape));
       movable.reach =
-          std::max(movable.reach, shape.pose.translation().norm() + boundingRadius(shape.shape));
+          std::max(movable.reach, shape.pose.translation().norm() + movable.shapeRadii.back());
     }
     movable_.push_back(std::move(movable));
   }
@@ -69,7 +73,10 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
 
 std::vector<GoalFreeSpace::NearShape> GoalFreeSpace::nearShapes(
     const double* state, const Eigen::Isometry3d& goalLink) const {
+  // Padded so that rounding never culls a point the shape's own test would find inside.
+  constexpr double kBallPadding = 1e-6;  // m
   const Eigen::Vector3d boxCentre = goalLink * center_;
+  const Eigen::Isometry3d toGoalLink = goalLink.inverse();
   std::vector<NearShape> near;
   for (std::size_t e = 0; e < movable_.size(); ++e) {
     const MovableBody& m = movable_[e];
@@ -78,8 +85,16 @@ std::vector<GoalFreeSpace::NearShape> GoalFreeSpace::nearShapes(
     Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
     pose.linear() = WorldLayout::orientation(state, m.body).normalized().toRotationMatrix();
     pose.translation() = position;
-    for (std::size_t s : m.shapes)
-      near.push_back({&layout_->shapes[s].shape, e, (pose * layout_->shapes[s].pose).inverse()});
+    for (std::size_t i = 0; i < m.shapes.size(); ++i) {
+      const Eigen::Isometry3d shapePose = pose * layout_->shapes[m.shapes[i]].pose;
+      const Eigen::Vector3d ballCentre = toGoalLink * shapePose.translation();
+      const double radius = m.shapeRadii[i] + kBallPadding;
+      // How far the ball's centre lies outside the box (zero inside it).
+      const Eigen::Vector3d outside = ((ballCentre - center_).cwiseAbs() - halfSize_).cwiseMax(0.0);
+      if (outside.squaredNorm() > radius * radius) continue;
+      near.push_back({&layout_->shapes[m.shapes[i]].shape, e, shapePose.inverse(), ballCentre,
+                      radius * radius});
+    }
   }
   return near;
 }
@@ -92,18 +107,22 @@ std::vector<std::size_t> GoalFreeSpace::pointsInside(const double* state,
   anyInside = 0;
   if (near.empty()) return counts;
   std::vector<char> hit(movable_.size());
+  std::vector<std::size_t> hitEntries;
   for (const Eigen::Vector3d& p : grid_) {
-    const Eigen::Vector3d world = goalLink * p;
-    std::fill(hit.begin(), hit.end(), 0);
-    for (const NearShape& n : near)
-      if (!hit[n.entry] && inside(*n.shape, n.toShape * world)) hit[n.entry] = 1;
-    bool any = false;
-    for (std::size_t e = 0; e < hit.size(); ++e)
-      if (hit[e]) {
-        ++counts[e];
-        any = true;
-      }
-    anyInside += any;
+    std::optional<Eigen::Vector3d> world;  // worked out for the first shape that may hold p
+    hitEntries.clear();
+    for (const NearShape& n : near) {
+      if (hit[n.entry] || !n.mayHold(p)) continue;
+      if (!world) world = goalLink * p;
+      if (!inside(*n.shape, n.toShape * *world)) continue;
+      hit[n.entry] = 1;
+      hitEntries.push_back(n.entry);
+    }
+    for (std::size_t e : hitEntries) {
+      ++counts[e];
+      hit[e] = 0;
+    }
+    anyInside += !hitEntries.empty();
   }
   return counts;
 }
@@ -121,10 +140,14 @@ std::vector<std::string> GoalFreeSpace::occupants(const double* state,
 bool GoalFreeSpace::isFree(const double* state, const Eigen::Isometry3d& goalLink) const {
   // Stops at the first point inside an object: the planners ask this of many poses.
   const std::vector<NearShape> near = nearShapes(state, goalLink);
+  if (near.empty()) return true;
   for (const Eigen::Vector3d& p : grid_) {
-    const Eigen::Vector3d world = goalLink * p;
-    for (const NearShape& n : near)
-      if (inside(*n.shape, n.toShape * world)) return false;
+    std::optional<Eigen::Vector3d> world;
+    for (const NearShape& n : near) {
+      if (!n.mayHold(p)) continue;
+      if (!world) world = goalLink * p;
+      if (inside(*n.shape, n.toShape * *world)) return false;
+    }
   }
   return true;
 }

@@ -2,6 +2,8 @@
 // object the generator stands on the pre-grasp: the goal sees it there, and not once it moves.
 
 #include <algorithm>
+#include <cmath>
+#include <variant>
 
 #include <gtest/gtest.h>
 
@@ -27,6 +29,46 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+/// The free space's answer worked out the slow way: every grid point (laid out as
+/// GoalFreeSpace documents it) against every shape of every movable body, no culling.
+std::vector<std::string> occupantsByEveryPoint(const WorldLayout& layout, const double* state,
+                                               const Eigen::Isometry3d& goalLink,
+                                               const Eigen::Vector3d& size,
+                                               const Eigen::Vector3d& center) {
+  Eigen::Vector3i count;
+  for (int a = 0; a < 3; ++a)
+    count[a] = std::max(2, 1 + static_cast<int>(std::ceil(size[a] / GoalFreeSpace::kSpacing)));
+  std::vector<std::string> names;
+  for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
+    if (layout.bodies[b].role != BodyRole::Movable) continue;
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.linear() = WorldLayout::orientation(state, b).normalized().toRotationMatrix();
+    pose.translation() = WorldLayout::position(state, b);
+    bool occupies = false;
+    for (const ShapeInfo& info : layout.shapes) {
+      if (info.body != static_cast<int>(b)) continue;
+      const Eigen::Isometry3d toShape = (pose * info.pose).inverse();
+      for (int i = 0; i < count.x() && !occupies; ++i)
+        for (int j = 0; j < count.y() && !occupies; ++j)
+          for (int k = 0; k < count.z() && !occupies; ++k) {
+            const Eigen::Vector3d fraction(i / double(count.x() - 1), j / double(count.y() - 1),
+                                           k / double(count.z() - 1));
+            const Eigen::Vector3d p =
+                toShape *
+                (goalLink * (center + (fraction.array() - 0.5).matrix().cwiseProduct(size)));
+            if (const auto* c = std::get_if<core::Cylinder>(&info.shape))
+              occupies = p.head<2>().norm() <= c->radius && std::abs(p.z()) <= 0.5 * c->length;
+            else if (const auto* box = std::get_if<core::Box>(&info.shape))
+              occupies = (p.cwiseAbs() - 0.5 * box->size).maxCoeff() <= 0.0;
+            else
+              ADD_FAILURE() << "the reference knows cylinders and boxes only";
+          }
+    }
+    if (occupies) names.push_back(layout.bodies[b].name);
+  }
+  return names;
+}
+
 TEST(GoalFreeSpaceTest, AnObjectOnThePregraspOccupiesItUntilItIsPushedAway) {
   test::ContextFixture fixture("problems/kuka_clutter_10.xml");
   const GoalSpec& spec = fixture.context.goal().spec();
@@ -44,6 +86,37 @@ TEST(GoalFreeSpaceTest, AnObjectOnThePregraspOccupiesItUntilItIsPushedAway) {
   const auto after = freeSpace.occupants(fixture.state.data(), goal);
   EXPECT_FALSE(contains(after, "can1"));
   EXPECT_EQ(after.size() + 1, before.size());
+}
+
+TEST(GoalFreeSpaceTest, SkippingFarGridPointsChangesNoAnswer) {
+  // Dense scenes, the gripper swept over a lattice about the pre-grasp and turned: the
+  // free space names the same occupants as testing every point against every shape, and is
+  // free exactly when it names none. Most poses have one or more cans only partly inside.
+  for (const char* file : {"problems/kuka_clutter_30.xml", "problems/yumi_clutter_30.xml"}) {
+    test::ContextFixture fixture(file);
+    const GoalSpec& spec = fixture.context.goal().spec();
+    ASSERT_TRUE(spec.freeSpace.has_value()) << file;
+    const WorldLayout& layout = fixture.context.layout();
+    const GoalFreeSpace freeSpace(std::make_shared<WorldLayout>(layout), spec.freeSpace->size,
+                                  spec.freeSpace->center);
+    std::size_t occupied = 0, poses = 0;
+    for (double dx = -0.12; dx <= 0.121; dx += 0.03)
+      for (double dy = -0.12; dy <= 0.121; dy += 0.03)
+        for (double yaw : {-0.4, 0.0, 0.7}) {
+          Eigen::Isometry3d link = fixture.context.goal().nominalGoalPose();
+          link.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * link.linear();
+          link.translation() += Eigen::Vector3d(dx, dy, 0.0);
+          const auto expected = occupantsByEveryPoint(layout, fixture.state.data(), link,
+                                                      spec.freeSpace->size, spec.freeSpace->center);
+          EXPECT_EQ(freeSpace.occupants(fixture.state.data(), link), expected)
+              << file << " at " << dx << ", " << dy << ", yaw " << yaw;
+          EXPECT_EQ(freeSpace.isFree(fixture.state.data(), link), expected.empty());
+          occupied += expected.empty() ? 0 : 1;
+          ++poses;
+        }
+    EXPECT_GT(occupied, poses / 4) << file << ": the lattice should meet the clutter";
+    EXPECT_LT(occupied, poses) << file << ": and some clear poses";
+  }
 }
 
 TEST(GoalFreeSpaceTest, TheSearchDistanceCountsTheBlockerUntilItIsPushedAway) {

@@ -37,21 +37,30 @@ class GoalFreeSpace {
   Occupancy occupancy(const double* state, const Eigen::Isometry3d& goalLink) const;
 
  private:
-  /// A movable body's shapes (indices into the layout's) and the radius of a ball about the
-  /// body's origin that holds them all: fixed by the layout, so worked out once.
+  /// A movable body's shapes (indices into the layout's), the radius of a ball about each
+  /// shape's origin that holds it, and of one about the body's origin that holds them all:
+  /// fixed by the layout, so worked out once.
   struct MovableBody {
     std::size_t body;
     std::vector<std::size_t> shapes;
+    std::vector<double> shapeRadii;
     double reach;
   };
-  /// A shape of a movable body near the box, with the map from world to its own frame.
+  /// A shape of a movable body near the box, with the map from world to its own frame, and
+  /// its bounding ball in the goal link's frame (the grid's): a grid point outside the ball
+  /// cannot be inside the shape and costs no transform.
   struct NearShape {
     const core::Shape* shape;
     std::size_t entry;  ///< in movable_
     Eigen::Isometry3d toShape;
+    Eigen::Vector3d ballCentre;
+    double ballRadiusSquared;
+    bool mayHold(const Eigen::Vector3d& gridPoint) const {
+      return (gridPoint - ballCentre).squaredNorm() <= ballRadiusSquared;
+    }
   };
-  /// The shapes of the bodies near the box with the goal link at `goalLink`: most objects are
-  /// nowhere near the gripper and are skipped whole.
+  /// The shapes of the bodies near the box with the goal link at `goalLink` whose bounding
+  /// balls reach into it: most objects are nowhere near the gripper and are skipped whole.
   std::vector<NearShape> nearShapes(const double* state, const Eigen::Isometry3d& goalLink) const;
   /// Per entry of movable_: how many grid points lie inside that body; `anyInside` gets how
   /// many lie inside some body. One pass serves occupants() and occupancy().
@@ -60,6 +69,7 @@ class GoalFreeSpace {
 
   std::shared_ptr<const WorldLayout> layout_;
   Eigen::Vector3d center_;
+  Eigen::Vector3d halfSize_;
   double boundingRadius_;              ///< of the box, about its centre
   std::vector<Eigen::Vector3d> grid_;  ///< in the goal link's frame
   std::vector<MovableBody> movable_;   ///< bodies that may not be in the box
