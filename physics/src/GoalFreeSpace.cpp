@@ -45,10 +45,12 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
       boundingRadius_(0.5 * size.norm()) {
   if (!(size.minCoeff() > 0.0) || !size.allFinite())
     throw std::invalid_argument("a goal's free space needs three positive box sides");
-  Eigen::Vector3i count;
+  Eigen::Vector3i& count = count_;
   // At least two points per axis (both faces), at most kSpacing apart.
-  for (int a = 0; a < 3; ++a)
+  for (int a = 0; a < 3; ++a) {
     count[a] = std::max(2, 1 + static_cast<int>(std::ceil(size[a] / kSpacing)));
+    spacing_[a] = size[a] / (count[a] - 1);
+  }
   for (int i = 0; i < count.x(); ++i)
     for (int j = 0; j < count.y(); ++j)
       for (int k = 0; k < count.z(); ++k) {
@@ -99,31 +101,48 @@ std::vector<GoalFreeSpace::NearShape> GoalFreeSpace::nearShapes(
   return near;
 }
 
+template <typename Visit>
+bool GoalFreeSpace::forPointsAround(const NearShape& shape, Visit&& visit) const {
+  const double radius = std::sqrt(shape.ballRadiusSquared);
+  Eigen::Vector3i first, last;
+  for (int a = 0; a < 3; ++a) {
+    const double low = shape.ballCentre[a] - radius - (center_[a] - halfSize_[a]);
+    first[a] = std::max(0, static_cast<int>(std::floor(low / spacing_[a])) - 1);
+    last[a] = std::min(count_[a] - 1,
+                       static_cast<int>(std::ceil((low + 2.0 * radius) / spacing_[a])) + 1);
+  }
+  for (int i = first.x(); i <= last.x(); ++i)
+    for (int j = first.y(); j <= last.y(); ++j)
+      for (int k = first.z(); k <= last.z(); ++k)
+        if (!visit((static_cast<std::size_t>(i) * count_.y() + j) * count_.z() + k)) return false;
+  return true;
+}
+
 std::vector<std::size_t> GoalFreeSpace::pointsInside(const double* state,
                                                      const Eigen::Isometry3d& goalLink,
                                                      std::size_t& anyInside) const {
+  // Shape by shape, over the grid points near each: most of the box is near no object.
   const std::vector<NearShape> near = nearShapes(state, goalLink);
   std::vector<std::size_t> counts(movable_.size(), 0);
   anyInside = 0;
   if (near.empty()) return counts;
-  std::vector<char> hit(movable_.size());
-  std::vector<std::size_t> hitEntries;
-  for (const Eigen::Vector3d& p : grid_) {
-    std::optional<Eigen::Vector3d> world;  // worked out for the first shape that may hold p
-    hitEntries.clear();
-    for (const NearShape& n : near) {
-      if (hit[n.entry] || !n.mayHold(p)) continue;
-      if (!world) world = goalLink * p;
-      if (!inside(*n.shape, n.toShape * *world)) continue;
-      hit[n.entry] = 1;
-      hitEntries.push_back(n.entry);
-    }
-    for (std::size_t e : hitEntries) {
-      ++counts[e];
-      hit[e] = 0;
-    }
-    anyInside += !hitEntries.empty();
-  }
+  std::vector<std::size_t> countedFor(grid_.size(), movable_.size());  // the entry, or none
+  std::vector<char> inSome(grid_.size(), 0);
+  for (const NearShape& n : near)
+    forPointsAround(n, [&](std::size_t index) {
+      const Eigen::Vector3d& p = grid_[index];
+      // A point counts once per body, however many of its shapes hold it.
+      if (countedFor[index] == n.entry || !n.mayHold(p) ||
+          !inside(*n.shape, n.toShape * (goalLink * p)))
+        return true;
+      countedFor[index] = n.entry;
+      ++counts[n.entry];
+      if (!inSome[index]) {
+        inSome[index] = 1;
+        ++anyInside;
+      }
+      return true;
+    });
   return counts;
 }
 
@@ -139,15 +158,12 @@ std::vector<std::string> GoalFreeSpace::occupants(const double* state,
 
 bool GoalFreeSpace::isFree(const double* state, const Eigen::Isometry3d& goalLink) const {
   // Stops at the first point inside an object: the planners ask this of many poses.
-  const std::vector<NearShape> near = nearShapes(state, goalLink);
-  if (near.empty()) return true;
-  for (const Eigen::Vector3d& p : grid_) {
-    std::optional<Eigen::Vector3d> world;
-    for (const NearShape& n : near) {
-      if (!n.mayHold(p)) continue;
-      if (!world) world = goalLink * p;
-      if (inside(*n.shape, n.toShape * *world)) return false;
-    }
+  for (const NearShape& n : nearShapes(state, goalLink)) {
+    const bool clear = forPointsAround(n, [&](std::size_t index) {
+      const Eigen::Vector3d& p = grid_[index];
+      return !n.mayHold(p) || !inside(*n.shape, n.toShape * (goalLink * p));
+    });
+    if (!clear) return false;
   }
   return true;
 }

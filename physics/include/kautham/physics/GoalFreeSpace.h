@@ -62,6 +62,11 @@ class GoalFreeSpace {
   /// The shapes of the bodies near the box with the goal link at `goalLink` whose bounding
   /// balls reach into it: most objects are nowhere near the gripper and are skipped whole.
   std::vector<NearShape> nearShapes(const double* state, const Eigen::Isometry3d& goalLink) const;
+  /// Calls `visit(index)` for each grid point in the box around a near shape's ball (a few
+  /// rows more on each side, so rounding loses none), until it returns false; returns
+  /// whether it never did.
+  template <typename Visit>
+  bool forPointsAround(const NearShape& shape, Visit&& visit) const;
   /// Per entry of movable_: how many grid points lie inside that body; `anyInside` gets how
   /// many lie inside some body. One pass serves occupants() and occupancy().
   std::vector<std::size_t> pointsInside(const double* state, const Eigen::Isometry3d& goalLink,
@@ -71,7 +76,9 @@ class GoalFreeSpace {
   Eigen::Vector3d center_;
   Eigen::Vector3d halfSize_;
   double boundingRadius_;              ///< of the box, about its centre
-  std::vector<Eigen::Vector3d> grid_;  ///< in the goal link's frame
+  std::vector<Eigen::Vector3d> grid_;  ///< in the goal link's frame, x-major: (i, j, k)
+  Eigen::Vector3i count_;              ///< grid points along each axis
+  Eigen::Vector3d spacing_;            ///< between neighbouring grid points along each axis
   std::vector<MovableBody> movable_;   ///< bodies that may not be in the box
 };
 
