@@ -91,9 +91,10 @@ std::vector<GoalFreeSpace::NearShape> GoalFreeSpace::nearShapes(
       const Eigen::Isometry3d shapePose = pose * layout_->shapes[m.shapes[i]].pose;
       const Eigen::Vector3d ballCentre = toGoalLink * shapePose.translation();
       const double radius = m.shapeRadii[i] + kBallPadding;
-      // How far the ball's centre lies outside the box (zero inside it).
+      // How far the ball's centre lies outside the box (zero inside it). A shape at a pose
+      // that is not a number holds no point (as the exact test says).
       const Eigen::Vector3d outside = ((ballCentre - center_).cwiseAbs() - halfSize_).cwiseMax(0.0);
-      if (outside.squaredNorm() > radius * radius) continue;
+      if (!ballCentre.allFinite() || outside.squaredNorm() > radius * radius) continue;
       near.push_back({&layout_->shapes[m.shapes[i]].shape, e, shapePose.inverse(), ballCentre,
                       radius * radius});
     }
@@ -107,9 +108,10 @@ bool GoalFreeSpace::forPointsAround(const NearShape& shape, Visit&& visit) const
   Eigen::Vector3i first, last;
   for (int a = 0; a < 3; ++a) {
     const double low = shape.ballCentre[a] - radius - (center_[a] - halfSize_[a]);
-    first[a] = std::max(0, static_cast<int>(std::floor(low / spacing_[a])) - 1);
-    last[a] = std::min(count_[a] - 1,
-                       static_cast<int>(std::ceil((low + 2.0 * radius) / spacing_[a])) + 1);
+    const double top = count_[a] - 1;
+    first[a] = static_cast<int>(std::clamp(std::floor(low / spacing_[a]) - 1.0, 0.0, top));
+    last[a] =
+        static_cast<int>(std::clamp(std::ceil((low + 2.0 * radius) / spacing_[a]) + 1.0, 0.0, top));
   }
   for (int i = first.x(); i <= last.x(); ++i)
     for (int j = first.y(); j <= last.y(); ++j)

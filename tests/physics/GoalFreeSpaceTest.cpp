@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <variant>
 
 #include <gtest/gtest.h>
@@ -117,6 +118,17 @@ TEST(GoalFreeSpaceTest, SkippingFarGridPointsChangesNoAnswer) {
     EXPECT_GT(occupied, poses / 4) << file << ": the lattice should meet the clutter";
     EXPECT_LT(occupied, poses) << file << ": and some clear poses";
   }
+}
+
+TEST(GoalFreeSpaceTest, AnObjectAtAPoseThatIsNotANumberFillsNoPoint) {
+  test::ContextFixture fixture("problems/kuka_clutter_10.xml");
+  const GoalSpec& spec = fixture.context.goal().spec();
+  const GoalFreeSpace freeSpace(std::make_shared<WorldLayout>(fixture.context.layout()),
+                                spec.freeSpace->size, spec.freeSpace->center);
+  const Eigen::Isometry3d goal = tcpAtGoal(fixture.context);
+  ASSERT_TRUE(contains(freeSpace.occupants(fixture.state.data(), goal), "can1"));
+  fixture.bodyState("can1")[0] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(contains(freeSpace.occupants(fixture.state.data(), goal), "can1"));
 }
 
 TEST(GoalFreeSpaceTest, TheSearchDistanceCountsTheBlockerUntilItIsPushedAway) {
