@@ -45,17 +45,16 @@ GoalFreeSpace::GoalFreeSpace(std::shared_ptr<const WorldLayout> layout, const Ei
       boundingRadius_(0.5 * size.norm()) {
   if (!(size.minCoeff() > 0.0) || !size.allFinite())
     throw std::invalid_argument("a goal's free space needs three positive box sides");
-  Eigen::Vector3i& count = count_;
   // At least two points per axis (both faces), at most kSpacing apart.
   for (int a = 0; a < 3; ++a) {
-    count[a] = std::max(2, 1 + static_cast<int>(std::ceil(size[a] / kSpacing)));
-    spacing_[a] = size[a] / (count[a] - 1);
+    count_[a] = std::max(2, 1 + static_cast<int>(std::ceil(size[a] / kSpacing)));
+    spacing_[a] = size[a] / (count_[a] - 1);
   }
-  for (int i = 0; i < count.x(); ++i)
-    for (int j = 0; j < count.y(); ++j)
-      for (int k = 0; k < count.z(); ++k) {
-        const Eigen::Vector3d fraction(i / double(count.x() - 1), j / double(count.y() - 1),
-                                       k / double(count.z() - 1));
+  for (int i = 0; i < count_.x(); ++i)
+    for (int j = 0; j < count_.y(); ++j)
+      for (int k = 0; k < count_.z(); ++k) {
+        const Eigen::Vector3d fraction(i / double(count_.x() - 1), j / double(count_.y() - 1),
+                                       k / double(count_.z() - 1));
         grid_.push_back(center + (fraction.array() - 0.5).matrix().cwiseProduct(size));
       }
   for (std::size_t b = 0; b < layout_->bodies.size(); ++b) {

@@ -62,8 +62,8 @@ class GoalFreeSpace {
   /// The shapes of the bodies near the box with the goal link at `goalLink` whose bounding
   /// balls reach into it: most objects are nowhere near the gripper and are skipped whole.
   std::vector<NearShape> nearShapes(const double* state, const Eigen::Isometry3d& goalLink) const;
-  /// Calls `visit(index)` for each grid point in the box around a near shape's ball (a few
-  /// rows more on each side, so rounding loses none), until it returns false; returns
+  /// Calls `visit(index)` for each grid point in the box around a near shape's ball (a
+  /// row more on each side, so rounding loses none), until it returns false; returns
   /// whether it never did.
   template <typename Visit>
   bool forPointsAround(const NearShape& shape, Visit&& visit) const;
