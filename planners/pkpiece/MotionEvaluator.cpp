@@ -129,6 +129,7 @@ bool MotionEvaluator::displacementWithinLimit(const double* start, const double*
 
 void MotionEvaluator::resetCounts() {
   particleCount_ = 0;
+  certainEarly_ = 0;
   failures_ = FailureTally{};
 }
 
@@ -188,10 +189,13 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
   // once and no process waits at a batch's end for another's last job (the same results).
   const std::size_t batch =
       toBeat < 0.0 ? jobs.size() : std::max<std::size_t>(kParticleBatch, threads());
+  // The sequential test's batch is fixed, whatever the threads, so the work done is too.
+  const std::size_t certainAfter = request.certainAfter < particles ? request.certainAfter : 0;
   std::size_t ran = 0;
   try {
     while (ran < jobs.size()) {
-      const std::size_t end = std::min(jobs.size(), ran + batch);
+      const std::size_t size = ran == 0 && certainAfter > 0 ? certainAfter : batch;
+      const std::size_t end = std::min(jobs.size(), ran + size);
       std::vector<ParticleResult> results =
           runJobs(std::vector<ParticleJob>(jobs.begin() + ran, jobs.begin() + end));
       for (std::size_t p = ran; p < end; ++p) {
@@ -199,6 +203,11 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
         tallyLastFailure(jobs[p], verdict);
       }
       ran = end;
+      if (ran == certainAfter && allSucceeded(verdict)) {
+        verdict.particles = static_cast<unsigned>(ran);
+        ++certainEarly_;
+        break;
+      }
       // Every remaining particle valid is the best case; computed as belief() computes, so
       // that equal counts round equally and a pruned candidate could at most tie.
       const auto bestFraction = [&](const std::vector<char>& flags) {
@@ -219,6 +228,13 @@ ParticleVerdict MotionEvaluator::runParticles(const ParticleRequest& request, do
   particleCount_ += ran;
   verdict.tally();
   return verdict;
+}
+
+bool MotionEvaluator::allSucceeded(const ParticleVerdict& verdict) {
+  const auto all = [](const std::vector<char>& flags) {
+    return std::all_of(flags.begin(), flags.end(), [](char f) { return f == 1; });
+  };
+  return all(verdict.endValid) && all(verdict.endInteractionOk);
 }
 
 void MotionEvaluator::addOutcome(ParticleVerdict& verdict, const double* start,

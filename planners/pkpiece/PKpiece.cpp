@@ -146,6 +146,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(confirmations_); });
   addPlannerProgressProperty("particles INTEGER",
                              [this] { return std::to_string(evaluator_.particleCount()); });
+  // Particle judgements the sequential test ended early (certain_after).
+  addPlannerProgressProperty("certain_early INTEGER",
+                             [this] { return std::to_string(evaluator_.certainEarly()); });
   addPlannerProgressProperty("mean_solution_belief REAL", [this] {
     if (solutionBeliefs_.empty()) return std::string("nan");
     double sum = 0.0;
@@ -396,6 +399,7 @@ ParticleRequest PKpiece::particleRequest(const Candidate& candidate, const Motio
   request.robots = from.robotSpread.get();
   request.recordAfter = candidate.recordAfter;
   request.particles = settings_.particles;
+  request.certainAfter = candidate.run.reachedGoal ? 0 : settings_.certainAfter;
   request.streamSeed = candidate.streamSeed;
   return request;
 }

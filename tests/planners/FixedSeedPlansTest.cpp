@@ -14,7 +14,8 @@
 // before it set confirm_unrivalled 1 and keep their hashes, and one more records the default.
 // Session 39 ran a candidate's nominal motion only when the choice needs it (lazy_candidates 1):
 // the p-KPIECE runs recorded before set lazy_candidates 0 and keep their hashes, and two more
-// record the default, with and without uncertainty.
+// record the default, with and without uncertainty. Session 41's sequential test (certain_after,
+// off by default) changes no recorded run; one more records it.
 
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
@@ -133,6 +134,11 @@ INSTANTIATE_TEST_SUITE_P(
                  25,
                  5773549299231333681ull},
         FixedRun{"p-KPIECE", {{"particles", "4"}}, 3, 25, 5848371871312194375ull},
+        FixedRun{"p-KPIECE",
+                 {{"particles", "4"}, {"certain_after", "2"}},
+                 3,
+                 25,
+                 1098341487463820961ull},
         FixedRun{"p-KPIECE",
                  {{"uncertainty", "false"}, {"displacement", "0.2"}},
                  1,

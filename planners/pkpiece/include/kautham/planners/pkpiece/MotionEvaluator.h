@@ -59,7 +59,10 @@ struct ParticleRequest {
   const RobotSpread* robots = nullptr;
   std::vector<unsigned> recordAfter;  ///< steps after which each particle's state is kept
   unsigned particles = 0;             ///< n_p
-  std::uint64_t streamSeed = 0;       ///< particle i draws from the stream streamSeed + i
+  /// A sequential test: once this many particles have run and every one ended valid with its
+  /// objects moved at most d, the rest are not run and these judge the motion (0: all n_p).
+  unsigned certainAfter = 0;
+  std::uint64_t streamSeed = 0;  ///< particle i draws from the stream streamSeed + i
 };
 
 /// Runs candidate motions through the physics for p-KPIECE: nominally, and as particle
@@ -105,6 +108,8 @@ class MotionEvaluator {
   /// best belief the remaining particles could still give is bounded; once it cannot exceed
   /// `toBeat`, the run stops and the verdict is `pruned`. A negative `toBeat` never prunes,
   /// and then all the particles run as one batch.
+  /// With the request's certainAfter m (0 < m < n_p), the first m particles run as a batch
+  /// of their own; if all succeed, the verdict rests on them (`particles` m, belief 1).
   /// A particle counts as in the goal only if it is valid and moved the objects at most d.
   ParticleVerdict runParticles(const ParticleRequest& request, double toBeat = -1.0);
   /// The particle jobs of a request: everything random drawn, in particle order.
@@ -120,6 +125,8 @@ class MotionEvaluator {
   /// Movable objects and the target: the bodies whose poses are uncertain.
   const std::vector<std::size_t>& objectBodies() const { return objectBodies_; }
   std::uint64_t particleCount() const { return particleCount_; }
+  /// Particle runs the sequential test ended early, judged by their first particles alone.
+  std::uint64_t certainEarly() const { return certainEarly_; }
   /// Why the particles run so far failed (a diagnosis; nothing reads it back).
   const FailureTally& particleFailures() const { return failures_; }
   /// Forgets the particles run so far and their failures (the planner's clear()).
@@ -138,6 +145,8 @@ class MotionEvaluator {
   /// The rule `state` breaks, judged as `job` judged it, and the object that broke it.
   std::pair<physics::Violation, std::optional<std::size_t>> brokenRule(const ParticleJob& job,
                                                                        const double* state) const;
+  /// Every particle so far ended valid with its objects moved at most d.
+  static bool allSucceeded(const ParticleVerdict& verdict);
   /// Appends a particle's outcome, judged against its own start, to the verdict.
   void addOutcome(ParticleVerdict& verdict, const double* start, ParticleResult&& result) const;
   std::vector<ParticleResult> runJobs(const std::vector<ParticleJob>& jobs);
@@ -151,6 +160,7 @@ class MotionEvaluator {
   std::size_t stateSize_;
   std::size_t controlSize_;
   std::uint64_t particleCount_ = 0;
+  std::uint64_t certainEarly_ = 0;
   FailureTally failures_;
 };
 

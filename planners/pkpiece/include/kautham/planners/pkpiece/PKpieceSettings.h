@@ -46,6 +46,10 @@ struct PKpieceSettings {
   /// from running all first only where a candidate after a certain one would have reached the
   /// goal: on the dense suite most expansions keep their first candidate (the goal steering's).
   bool lazyCandidates;
+  /// A sequential test (ours): a candidate that does not reach the goal is judged by its first
+  /// certainAfter particles alone when every one of them succeeds (belief 1), and by all n_p
+  /// otherwise. 0: always all n_p, as the paper.
+  unsigned certainAfter;
   /// The kept candidate's belief is measured again by fresh particles: the best of k
   /// estimates is biased upwards (the winner's curse), and the plan's estimated success is a
   /// product of such winners.
@@ -226,6 +230,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("with prune_candidates, run a candidate's nominal motion only when "
                              "the choice needs it: in order until one is certain (every one if "
                              "one reaches the goal, or for a random keep); 0: all k first"))
+          .add(&S::certainAfter,
+               Parameter::integer("certain_after")
+                   .byDefault(0)
+                   .range(0, 10000)
+                   .describe("a sequential test: a candidate that does not reach the goal is "
+                             "certain once its first this many particles all succeed, and the "
+                             "rest are not run (0: all n_p)"))
           .add(&S::confirmBelief,
                Parameter::flag("confirm_belief")
                    .byDefault(1)
