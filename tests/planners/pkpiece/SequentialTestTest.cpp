@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -39,65 +40,70 @@ ParticleRequest request(const Scene& scene, const ObjectPoseBelief& poses,
   return r;
 }
 
-TEST(SequentialTestTest, AMotionWhoseFirstParticlesAllSucceedIsJudgedByThemAlone) {
+/// The scene with an evaluator that lets an object move at most `maxDisplacement` in a motion,
+/// and the scene's initial pose belief.
+struct Judging {
+  explicit Judging(double maxDisplacement) : evaluator(scene.context, maxDisplacement) {}
+  /// Seven particles of `control` (request), the first `certainAfter` a sequential test.
+  ParticleVerdict judge(const std::vector<double>& control, unsigned certainAfter) {
+    return evaluator.runParticles(request(scene, *poses, control, certainAfter));
+  }
   Scene scene;
-  MotionEvaluator evaluator(scene.context, 0.05);
-  const auto poses = ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(),
-                                               scene.context.startState().data());
+  MotionEvaluator evaluator;
+  std::shared_ptr<const ObjectPoseBelief> poses = ObjectPoseBelief::initial(
+      scene.context.layout(), evaluator.sampler(), scene.context.startState().data());
+};
+
+TEST(SequentialTestTest, AMotionWhoseFirstParticlesAllSucceedIsJudgedByThemAlone) {
+  Judging judging(0.05);
   const std::vector<double> still = {0.0, 0.0, 0.0};  // the pusher stands: nothing can fail
-  const ParticleVerdict all = evaluator.runParticles(request(scene, *poses, still, 0));
+  const ParticleVerdict all = judging.judge(still, 0);
   ASSERT_EQ(all.ends.size(), 7u);
   EXPECT_EQ(all.belief(), 1.0);
-  EXPECT_EQ(evaluator.certainEarly(), 0u);
+  EXPECT_EQ(judging.evaluator.certainEarly(), 0u);
 
-  const ParticleVerdict first = evaluator.runParticles(request(scene, *poses, still, 3));
+  const ParticleVerdict first = judging.judge(still, 3);
   EXPECT_EQ(first.particles, 3u);
   ASSERT_EQ(first.ends.size(), 3u);
   EXPECT_EQ(first.belief(), 1.0);
   EXPECT_EQ(first.goal, all.goal);  // none of either ends in the goal
   // The same three particles as the first three of all seven, bit for bit.
   for (std::size_t p = 0; p < 3; ++p) EXPECT_EQ(first.ends[p], all.ends[p]) << p;
-  EXPECT_EQ(evaluator.particleCount(), 7u + 3u);
-  EXPECT_EQ(evaluator.certainEarly(), 1u);
+  EXPECT_EQ(judging.evaluator.particleCount(), 7u + 3u);
+  EXPECT_EQ(judging.evaluator.certainEarly(), 1u);
 }
 
 TEST(SequentialTestTest, AFailureAmongTheFirstParticlesHasEveryParticleRun) {
-  Scene scene;
   // Any push that moves a can more than 0.1 mm fails the interaction rule.
-  MotionEvaluator evaluator(scene.context, 0.0001);
-  const auto poses = ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(),
-                                               scene.context.startState().data());
+  Judging judging(0.0001);
   // The first of these pushes whose seven particles all fail, judged in full.
   const std::vector<std::vector<double>> pushes = {
       {0.0, 1.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, {-1.0, 0.0, 0.0}, {0.7, 0.7, 0.0}};
   const std::vector<double>* failing = nullptr;
   for (const std::vector<double>& push : pushes)
-    if (evaluator.runParticles(request(scene, *poses, push, 0)).belief() == 0.0) {
+    if (judging.judge(push, 0).belief() == 0.0) {
       failing = &push;
       break;
     }
   ASSERT_NE(failing, nullptr) << "no push moves a can in every particle";
-  const std::uint64_t before = evaluator.particleCount();
-  const ParticleVerdict verdict = evaluator.runParticles(request(scene, *poses, *failing, 3));
+  const std::uint64_t before = judging.evaluator.particleCount();
+  const ParticleVerdict verdict = judging.judge(*failing, 3);
   EXPECT_EQ(verdict.particles, 7u);
   EXPECT_EQ(verdict.ends.size(), 7u);
   EXPECT_EQ(verdict.belief(), 0.0);
-  EXPECT_EQ(evaluator.particleCount() - before, 7u);
-  EXPECT_EQ(evaluator.certainEarly(), 0u);
+  EXPECT_EQ(judging.evaluator.particleCount() - before, 7u);
+  EXPECT_EQ(judging.evaluator.certainEarly(), 0u);
 }
 
 TEST(SequentialTestTest, WorkersJudgeWithTheSameParticles) {
-  Scene scene;
-  MotionEvaluator evaluator(scene.context, 0.05);
-  const auto poses = ObjectPoseBelief::initial(scene.context.layout(), evaluator.sampler(),
-                                               scene.context.startState().data());
+  Judging judging(0.05);
   const std::vector<double> still = {0.0, 0.0, 0.0};
-  const ParticleVerdict alone = evaluator.runParticles(request(scene, *poses, still, 3));
-  evaluator.useWorkers(2);
-  const ParticleVerdict spread = evaluator.runParticles(request(scene, *poses, still, 3));
+  const ParticleVerdict alone = judging.judge(still, 3);
+  judging.evaluator.useWorkers(2);
+  const ParticleVerdict spread = judging.judge(still, 3);
   EXPECT_EQ(spread.particles, alone.particles);
   EXPECT_EQ(spread.ends, alone.ends);
-  EXPECT_EQ(evaluator.particleCount(), 6u);
+  EXPECT_EQ(judging.evaluator.particleCount(), 6u);
 }
 
 std::string property(const PlanOutcome& outcome, const std::string& name) {
