@@ -125,7 +125,7 @@ class MotionEvaluator {
   /// Movable objects and the target: the bodies whose poses are uncertain.
   const std::vector<std::size_t>& objectBodies() const { return objectBodies_; }
   std::uint64_t particleCount() const { return particleCount_; }
-  /// Particle runs the sequential test ended early, judged by their first particles alone.
+  /// Candidate judgements the sequential test ended early, on their first particles alone.
   std::uint64_t certainEarly() const { return certainEarly_; }
   /// Why the particles run so far failed (a diagnosis; nothing reads it back).
   const FailureTally& particleFailures() const { return failures_; }
