@@ -737,6 +737,13 @@ std::vector<physics::ControlStep> PKpiece::planControls(const Motion* end) {
   return controls;
 }
 
+void PKpiece::setDeadline(Clock::time_point deadline) {
+  deadline_ = deadline;
+  verifier_.stopAt(deadline);
+}
+
+bool PKpiece::pastDeadline() const { return deadline_ && Clock::now() >= *deadline_; }
+
 std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
   if (!settings_.uncertainty || settings_.verifyRuns == 0) return VerifiedPlan{end, 0, 0};
   const std::vector<physics::ControlStep> controls = planControls(end);
@@ -749,9 +756,10 @@ std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
     // runs, whatever they find, give its estimated success without that bias.
     const VerificationResult fresh = verifier_.measure(controls, settings_.verifyRuns);
     verificationRuns_ += fresh.runs;
-    end->successEstimate = fresh.rate();
+    end->successEstimate = fresh.runs > 0 ? fresh.rate() : result.rate();
     return VerifiedPlan{end, result.runs + fresh.runs, result.successes + fresh.successes};
   }
+  if (result.cutShort) return std::nullopt;  // undecided: the search ends, the plan stays
   ++verificationRejections_;
   end->reachesGoal = false;
   return std::nullopt;
@@ -768,7 +776,7 @@ ompl::base::PlannerStatus PKpiece::returnBestCollected() {
     const VerificationResult fresh =
         verifier_.measure(planControls(best->end), settings_.verifyRuns);
     verificationRuns_ += fresh.runs;
-    best->end->successEstimate = fresh.rate();
+    if (fresh.runs > 0) best->end->successEstimate = fresh.rate();
   }
   recordSolution(best->end, true, best->end->goalDistance);
   return ompl::base::PlannerStatus::EXACT_SOLUTION;
@@ -800,7 +808,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
   checkValidity();
   if (motions_.empty()) plantRoot();
   motionBudgetSpent_ = false;
-  while (!ptc && !outOfMotions()) {
+  while (!ptc && !outOfMotions() && !pastDeadline()) {
     Motion* from = selectMotion();
     CellData* cell = from->cell;
     Motion* added = expand(from);
@@ -814,6 +822,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
         startAfresh();
         continue;
       }
+      if (pastDeadline()) break;
       if (settings_.restartOnRejection) {
         startAfresh();
         continue;

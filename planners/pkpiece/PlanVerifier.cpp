@@ -22,7 +22,7 @@ VerificationResult PlanVerifier::verify(const std::vector<physics::ControlStep>&
   // rest put it out of reach. The count is decided as soon as either happens.
   const auto needed = static_cast<unsigned>(std::ceil(runs * threshold - 1e-9));
   VerificationResult result = count(controls, runs, needed, runs - needed);
-  result.passed = result.successes >= needed;
+  result.passed = !result.cutShort && result.successes >= needed;
   return result;
 }
 
@@ -30,7 +30,7 @@ VerificationResult PlanVerifier::measure(const std::vector<physics::ControlStep>
                                          unsigned runs) {
   // Neither more successes than runs nor more failures than runs: nothing decides early.
   VerificationResult result = count(controls, runs, runs + 1, runs);
-  result.passed = true;
+  result.passed = !result.cutShort;
   return result;
 }
 
@@ -41,6 +41,10 @@ VerificationResult PlanVerifier::count(const std::vector<physics::ControlStep>& 
   const unsigned batch = processes > 1 ? kRunsPerProcess * processes : 1;
   unsigned failures = 0;
   while (result.runs < runs && result.successes < needed && failures <= allowed) {
+    if (deadline_ && Clock::now() >= *deadline_) {
+      result.cutShort = true;
+      break;
+    }
     // No batch goes past the earliest run that could decide the count: every run handed out
     // is counted, so the work and the streams drawn do not depend on how many processes ran
     // them, and an early stop wastes no run.

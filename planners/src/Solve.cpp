@@ -14,6 +14,7 @@
 #include "kautham/planners/BeliefReporter.h"
 #include "kautham/planners/BeliefVertex.h"
 #include "kautham/planners/ControlReporter.h"
+#include "kautham/planners/DeadlinePlanner.h"
 #include "kautham/planners/ParallelPlanner.h"
 #include "kautham/planners/PlannerEntry.h"
 #include "kautham/planners/PlannerRegistry.h"
@@ -111,6 +112,9 @@ PlanOutcome solve(physics::PlanningContext& context, const PlanRequest& request,
 
   const physics::PropagationCounters before = context.propagator().counters();
   const Clock::time_point start = Clock::now();
+  if (auto* timed = dynamic_cast<DeadlinePlanner*>(planner.get()))
+    timed->setDeadline(start + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(request.timeLimit())));
   const ompl::base::PlannerStatus status = planner->solve(ompl::base::plannerOrTerminationCondition(
       ompl::base::timedPlannerTerminationCondition(request.timeLimit()),
       watcher(context, hooks, start)));

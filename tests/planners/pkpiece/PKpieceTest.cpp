@@ -8,11 +8,13 @@
 #include <utility>
 
 #include <gtest/gtest.h>
+#include <ompl/base/PlannerData.h>
 #include <ompl/util/Console.h>
 
 #include "TestPaths.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/physics/UncertaintySampler.h"
+#include "kautham/planners/DeadlinePlanner.h"
 #include "kautham/planners/Solve.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
 #include "kautham/planners/pkpiece/ObjectPoseBelief.h"
@@ -176,6 +178,27 @@ TEST(PKpieceTest, AMotionBudgetEndsTheSearchAsTheTimeLimitDoes) {
   EXPECT_EQ(within.property("motion_budget_spent"), "0");
   EXPECT_EQ(unlimited.outcome.statistics.treeStates, within.outcome.statistics.treeStates);
   expectSameControls(unlimited, within);
+}
+
+TEST(PKpieceTest, PastItsDeadlineTheSearchEndsWhateverTheTerminationCondition) {
+  // solve() gives p-KPIECE the end of its time limit (DeadlinePlanner), so that a plan's
+  // verification stops there too; a search handed a deadline already past expands nothing,
+  // even under a condition that never ends it.
+  const core::Problem problem =
+      core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
+  const PlanRequest request = makeRequest(problem, "p-KPIECE", {}, seedRandomness(1));
+  physics::PlanningContext context(problem, 0, request.propagation());
+  ompl::base::PlannerPtr planner = makePlanner(context, request);
+  planner->setProblemDefinition(context.problemDefinition());
+  planner->setup();
+  auto* timed = dynamic_cast<DeadlinePlanner*>(planner.get());
+  ASSERT_NE(timed, nullptr);
+  timed->setDeadline(DeadlinePlanner::Clock::now());
+  EXPECT_EQ(planner->solve(ompl::base::plannerNonTerminatingCondition()),
+            ompl::base::PlannerStatus::TIMEOUT);
+  ompl::base::PlannerData data(context.spaceInformation());
+  planner->getPlannerData(data);
+  EXPECT_EQ(data.numVertices(), 1u);  // the root alone
 }
 
 TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {

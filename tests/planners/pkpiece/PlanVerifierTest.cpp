@@ -2,6 +2,8 @@
 // random stream each, never repeated, and it stops once the verdict is sure either way; with
 // worker processes it counts the same runs.
 
+#include <chrono>
+
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
 
@@ -96,6 +98,28 @@ TEST(PlanVerifierTest, StopsAtTheSuccessThatMakesTheThresholdSure) {
   // The runs it did not need are drawn by the next count, as if it had stopped there.
   const VerificationResult next = verifier.measure(plan.controls, 1);
   EXPECT_EQ(next.successes, successesOfStreams(scene.context, plan.controls, early.runs, 1));
+}
+
+TEST(PlanVerifierTest, PastItsDeadlineACountIsCutShortAndAVerificationDoesNotPass) {
+  Scene scene;
+  std::vector<physics::ControlStep> idle(1);
+  idle[0].values.assign(scene.context.propagator().mapping().size(), 0.0);
+  idle[0].steps = 2;
+  PlanVerifier verifier(scene.evaluator, kSeedBase);
+  verifier.stopAt(PlanVerifier::Clock::now());
+  // No run is made: the verdict is undecided, and so not passed.
+  const VerificationResult verdict = verifier.verify(idle, 10, 0.5);
+  EXPECT_TRUE(verdict.cutShort);
+  EXPECT_FALSE(verdict.passed);
+  EXPECT_EQ(verdict.runs, 0u);
+  const VerificationResult measured = verifier.measure(idle, 10);
+  EXPECT_TRUE(measured.cutShort);
+  EXPECT_EQ(measured.runs, 0u);
+  // A deadline still ahead changes nothing.
+  verifier.stopAt(PlanVerifier::Clock::now() + std::chrono::hours(1));
+  const VerificationResult all = verifier.measure(idle, 10);
+  EXPECT_FALSE(all.cutShort);
+  EXPECT_EQ(all.runs, 10u);
 }
 
 /// Runs spread over worker processes are counted as one after another: the same verdict, the

@@ -12,6 +12,7 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/BeliefReporter.h"
+#include "kautham/planners/DeadlinePlanner.h"
 #include "kautham/planners/FailureReporter.h"
 #include "kautham/planners/ParallelPlanner.h"
 #include "kautham/planners/pkpiece/GoalSteering.h"
@@ -32,7 +33,8 @@ namespace kautham::planners {
 class PKpiece : public ompl::base::Planner,
                 public BeliefReporter,
                 public FailureReporter,
-                public ParallelPlanner {
+                public ParallelPlanner,
+                public DeadlinePlanner {
  public:
   PKpiece(physics::PlanningContext& context, const PKpieceSettings& settings);
   ~PKpiece() override;
@@ -52,6 +54,8 @@ class PKpiece : public ompl::base::Planner,
   }
   /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
   void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
+  /// Plan verification stops there (PlanVerifier::stopAt), and so does the search.
+  void setDeadline(Clock::time_point deadline) override;
 
  private:
   struct Motion;
@@ -177,6 +181,8 @@ class PKpiece : public ompl::base::Planner,
   /// with uncertainty and verifyRuns (with particles or without), only if enough of its sampled
   /// executions succeed (PlanVerifier); then as many fresh executions give its estimated
   /// success. A plan that fails stays in the tree (restartOnRejection: a new tree follows).
+  /// At the deadline a verification not yet decided does not pass, and the fresh executions
+  /// made so far give the estimate (the verification's own when there are none).
   std::optional<VerifiedPlan> verifyPlan(Motion* end);
   /// The plan ending with `end` as an execution runs it: one control per segment.
   static std::vector<physics::ControlStep> planControls(const Motion* end);
@@ -190,6 +196,8 @@ class PKpiece : public ompl::base::Planner,
   void plantRoot();
   /// True once the trees hold maxMotions motions together: the search ends as at its time limit.
   bool outOfMotions() const;
+  /// True once the time limit solve() was given has passed (setDeadline).
+  bool pastDeadline() const;
   /// Counts the expansion that just ended towards restartAfter; true when the tree is due to
   /// start afresh, for that or because it holds treeMotions motions.
   bool stalled();
@@ -235,6 +243,7 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t verificationRejections_ = 0;  ///< of those, the ones that did not pass
   std::uint64_t verificationRuns_ = 0;        ///< sampled executions those and the estimates ran
   std::vector<VerifiedPlan> verified_;        ///< the plans that passed, in the order found
+  std::optional<DeadlinePlanner::Clock::time_point> deadline_;  ///< the time limit's end
   bool steerNext_ = false;                ///< the motion being expanded was chosen by the goal bias
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to

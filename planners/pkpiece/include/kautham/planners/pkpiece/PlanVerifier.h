@@ -1,6 +1,8 @@
 #pragma once
 
+#include <chrono>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "kautham/physics/Replay.h"
@@ -13,6 +15,7 @@ struct VerificationResult {
   unsigned runs = 0;       ///< executions run (fewer than asked when it stopped early)
   unsigned successes = 0;  ///< of those, valid all along and ending in the goal
   bool passed = false;     ///< the success rate reaches the threshold over all the runs asked
+  bool cutShort = false;   ///< the deadline passed before the count was decided
   double rate() const { return runs == 0 ? 0.0 : static_cast<double>(successes) / runs; }
 };
 
@@ -29,14 +32,22 @@ struct VerificationResult {
 /// for a small N.
 class PlanVerifier {
  public:
+  using Clock = std::chrono::steady_clock;
+
   PlanVerifier(MotionEvaluator& evaluator, std::uint64_t seedBase);
+
+  /// From now on a count stops between two batches once `deadline` has passed (cutShort): a
+  /// verification so cut does not pass, a measurement gives the rate of the runs it made.
+  void stopAt(Clock::time_point deadline) { deadline_ = deadline; }
 
   /// Runs up to `runs` executions of `controls`; stops as soon as the rate over all `runs`
   /// is sure to reach `threshold` (enough have succeeded) or sure not to (too many have
-  /// failed): the verdict is the one all the runs would give, for fewer runs.
+  /// failed): the verdict is the one all the runs would give, for fewer runs. Cut short by
+  /// the deadline, it has not passed.
   VerificationResult verify(const std::vector<physics::ControlStep>& controls, unsigned runs,
                             double threshold);
-  /// Runs all `runs` executions of `controls`: the success rate they measure.
+  /// Runs all `runs` executions of `controls` (fewer when the deadline cuts it short): the
+  /// success rate they measure.
   VerificationResult measure(const std::vector<physics::ControlStep>& controls, unsigned runs);
 
  private:
@@ -48,6 +59,7 @@ class PlanVerifier {
   MotionEvaluator& evaluator_;
   std::uint64_t seedBase_;
   std::uint64_t nextRun_ = 0;  ///< runs counted so far: every counted run has its own stream
+  std::optional<Clock::time_point> deadline_;
 };
 
 }  // namespace kautham::planners
