@@ -198,6 +198,7 @@ void PKpiece::clear() {
   verificationRejections_ = 0;
   verificationRuns_ = 0;
   verified_.clear();
+  patienceEnd_.reset();
   closest_ = nullptr;
   expansionsSinceProgress_ = 0;
   treeStart_ = 0;
@@ -808,7 +809,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
   checkValidity();
   if (motions_.empty()) plantRoot();
   motionBudgetSpent_ = false;
-  while (!ptc && !outOfMotions() && !pastDeadline()) {
+  while (!ptc && !outOfMotions() && !pastDeadline() && !patienceSpent()) {
     Motion* from = selectMotion();
     CellData* cell = from->cell;
     Motion* added = expand(from);
@@ -818,7 +819,11 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     if (added && added->reachesGoal) {
       if (const std::optional<VerifiedPlan> plan = verifyPlan(added)) {
         verified_.push_back(*plan);
-        if (verified_.size() >= settings_.plans) return returnBestCollected();
+        if (collectedEnough()) return returnBestCollected();
+        if (settings_.aspiration > 0.0 && !patienceEnd_)
+          patienceEnd_ = static_cast<std::size_t>(
+              std::ceil(static_cast<double>(motions_.size()) * (1.0 + settings_.patience)));
+        if (patienceSpent()) return returnBestCollected();
         startAfresh();
         continue;
       }
@@ -858,6 +863,15 @@ void PKpiece::plantRoot() {
 bool PKpiece::outOfMotions() const {
   return settings_.maxMotions > 0 && motions_.size() >= settings_.maxMotions;
 }
+
+bool PKpiece::collectedEnough() const {
+  if (verified_.size() < settings_.plans) return false;
+  return std::any_of(verified_.begin(), verified_.end(), [this](const VerifiedPlan& plan) {
+    return plan.end->successEstimate >= settings_.aspiration;
+  });
+}
+
+bool PKpiece::patienceSpent() const { return patienceEnd_ && motions_.size() >= *patienceEnd_; }
 
 bool PKpiece::stalled() {
   if (settings_.treeMotions > 0 && motions_.size() - treeStart_ >= settings_.treeMotions)

@@ -34,12 +34,18 @@ void checkSomethingJudges(const PKpieceSettings& settings) {
       "(the paper's pKP)");
 }
 
-/// Choosing among several plans needs each one's measured success: only verification has it.
+/// Choosing among several plans, or holding one to a bar, needs each one's measured success:
+/// only verification has it.
 void checkPlansCanBeCompared(const PKpieceSettings& settings) {
-  if (settings.plans <= 1 || (settings.uncertainty && settings.verifyRuns > 0)) return;
-  throw std::invalid_argument(
-      "plans " + std::to_string(settings.plans) +
-      " needs verified plans to choose from: set uncertainty 1 and verify_runs > 0, or plans 1");
+  if (settings.uncertainty && settings.verifyRuns > 0) return;
+  if (settings.plans > 1)
+    throw std::invalid_argument(
+        "plans " + std::to_string(settings.plans) +
+        " needs verified plans to choose from: set uncertainty 1 and verify_runs > 0, or plans 1");
+  if (settings.aspiration > 0.0)
+    throw std::invalid_argument("aspiration " + std::to_string(settings.aspiration) +
+                                " needs plans' measured success: set uncertainty 1 and "
+                                "verify_runs > 0, or aspiration 0");
 }
 
 PlannerRegistry::Entry pKpiece() {

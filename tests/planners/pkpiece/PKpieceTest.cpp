@@ -452,6 +452,41 @@ TEST(PKpieceTest, CollectsVerifiedPlansFromNewTreesAndReturnsOneOfThem) {
   EXPECT_EQ(run.property("solution_confidence"), again.property("solution_confidence"));
 }
 
+TEST(PKpieceTest, BelowItsAspirationAPlanIsKeptWhileTheSearchLooksForABetterOne) {
+  // Without an aspiration the first plan that passes verification ends the search, its trees
+  // holding M motions. Aspiring to 1 (all 20 fresh runs succeed, which this scene's plans, at
+  // about a quarter, do not), the search keeps it and goes on from a new tree until its trees
+  // hold twice M (patience 1), then returns the best plan kept. With patience 0, or aspiring to
+  // no more than the first plan's own estimate, the first plan ends the search as before.
+  const std::string scene = "tests/data/pusher_cans_uncertain.xml";
+  const std::vector<ParameterOverride> base = generateAndTest();
+  const PlanRun first = plan(scene, "p-KPIECE", 1, base);
+  ASSERT_TRUE(first.outcome.solved);
+  const std::size_t motions = first.outcome.statistics.treeStates;
+  const auto with = [&base](std::vector<ParameterOverride> more) {
+    more.insert(more.begin(), base.begin(), base.end());
+    return more;
+  };
+  const PlanRun patient = plan(scene, "p-KPIECE", 1, with({{"aspiration", "1"}}));
+  ASSERT_TRUE(patient.outcome.solved);
+  EXPECT_TRUE(patient.replay.reachedGoal) << physics::toString(patient.replay.firstViolation);
+  EXPECT_GE(patient.outcome.statistics.treeStates, 2 * motions);
+  EXPECT_GT(std::stol(patient.property("restarts")), std::stol(first.property("restarts")));
+  EXPECT_LT(std::stod(patient.property("solution_confidence")), 1.0);
+  if (patient.property("verified_plans") == "1") expectSameControls(first, patient);
+
+  const PlanRun impatient =
+      plan(scene, "p-KPIECE", 1, with({{"aspiration", "1"}, {"patience", "0"}}));
+  const PlanRun content =
+      plan(scene, "p-KPIECE", 1, with({{"aspiration", first.property("solution_confidence")}}));
+  for (const PlanRun* run : {&impatient, &content}) {
+    ASSERT_TRUE(run->outcome.solved);
+    EXPECT_EQ(run->outcome.statistics.treeStates, motions);
+    EXPECT_EQ(run->property("solution_confidence"), first.property("solution_confidence"));
+    expectSameControls(first, *run);
+  }
+}
+
 TEST(PKpieceTest, SeveralPlansWithoutVerificationAreRejected) {
   // Nothing measures the plans to choose among: pKP's, or particles' estimates alone.
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_5.xml"));
@@ -465,6 +500,10 @@ TEST(PKpieceTest, SeveralPlansWithoutVerificationAreRejected) {
       context,
       makeRequest(problem, "p-KPIECE", {{"plans", "2"}, {"verify_runs", "0"}}, seedRandomness(1)),
       "plans");
+  expectRefused(context,
+                makeRequest(problem, "p-KPIECE", {{"aspiration", "0.8"}, {"uncertainty", "0"}},
+                            seedRandomness(1)),
+                "aspiration");
 }
 
 TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {

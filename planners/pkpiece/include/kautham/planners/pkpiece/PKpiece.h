@@ -198,6 +198,12 @@ class PKpiece : public ompl::base::Planner,
   bool outOfMotions() const;
   /// True once the time limit solve() was given has passed (setDeadline).
   bool pastDeadline() const;
+  /// True once the verified plans collected may end the search: `plans` of them, and one
+  /// whose estimate reaches the aspiration.
+  bool collectedEnough() const;
+  /// True once the search has grown `patience` times the motions it held at its first
+  /// verified plan below the aspiration.
+  bool patienceSpent() const;
   /// Counts the expansion that just ended towards restartAfter; true when the tree is due to
   /// start afresh, for that or because it holds treeMotions motions.
   bool stalled();
@@ -244,6 +250,7 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t verificationRuns_ = 0;        ///< sampled executions those and the estimates ran
   std::vector<VerifiedPlan> verified_;        ///< the plans that passed, in the order found
   std::optional<DeadlinePlanner::Clock::time_point> deadline_;  ///< the time limit's end
+  std::optional<std::size_t> patienceEnd_;  ///< motions at which patienceSpent()
   bool steerNext_ = false;                ///< the motion being expanded was chosen by the goal bias
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to

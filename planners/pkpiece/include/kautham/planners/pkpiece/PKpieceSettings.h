@@ -130,6 +130,15 @@ struct PKpieceSettings {
   /// and estimate runs is returned, its estimate measured again by fresh runs. When the time
   /// runs out first, the best of those collected is returned.
   unsigned plans;
+  /// The estimated success (a plan's fresh runs, solution_confidence) at which a verified plan
+  /// ends the search at once; 0: any does. A plan that passes verification below it is kept,
+  /// and the search goes on from a new tree for a better one, for at most `patience` times the
+  /// motions it took to find the first; then the best kept is returned. An anytime bar: on an
+  /// easy scene the search can afford a better plan, on a hard one it keeps the one it has.
+  double aspiration;
+  /// With aspiration: after its first verified plan below it, the search may grow its trees by
+  /// this many times the motions they held then (a budget in work: the same on any machine).
+  double patience;
 
   /// Each field's parameter, in the order `kautham planners` lists them, plus the projection's
   /// `cell_size` (the framework applies it). A `displacement` of 0 means the problem's
@@ -383,6 +392,21 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                               "verified plans to collect, each from a new tree, before the one "
                               "that succeeded most often is returned (the best so far when the "
                               "time runs out; needs uncertainty and verify_runs > 0)"))
+          .add(&S::aspiration,
+               Parameter::real("aspiration")
+                   .byDefault(0.0)
+                   .range(0.0, 1.0)
+                   .describe("estimated success at which a verified plan ends the search at "
+                             "once (0: any verified plan); one below it is kept and the search "
+                             "goes on from a new tree for a better one, for patience times the "
+                             "motions it took, then returns the best kept (needs uncertainty and "
+                             "verify_runs > 0)"))
+          .add(&S::patience,
+               Parameter::real("patience")
+                   .byDefault(1.0)
+                   .range(0.0, 100.0)
+                   .describe("with aspiration: motions the search may still grow after its first "
+                             "verified plan below it, as a multiple of the motions it held then"))
           // Measured on kuka_cans_10: 0.2 solves more seeds, with shorter plans, than 0.05.
           .add(&S::goalBias, goalBiasParameter(0.2))
           .add(&S::borderFraction, Parameter::real("border_fraction")
