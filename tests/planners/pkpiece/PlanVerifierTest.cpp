@@ -34,6 +34,14 @@ struct Scene {
   MotionEvaluator evaluator{context, 0.0};
 };
 
+/// A plan that goes nowhere: it never reaches the goal, so every run fails.
+std::vector<physics::ControlStep> idlePlan(const Scene& scene) {
+  std::vector<physics::ControlStep> idle(1);
+  idle[0].values.assign(scene.context.propagator().mapping().size(), 0.0);
+  idle[0].steps = 2;
+  return idle;
+}
+
 /// Successes of the executions kSeedBase's streams first..first+runs-1 give, as validate runs them.
 unsigned successesOfStreams(physics::PlanningContext& context,
                             const std::vector<physics::ControlStep>& controls, unsigned first,
@@ -63,10 +71,7 @@ TEST(PlanVerifierTest, RunsSampledExecutionsOnFreshStreamsEachTime) {
 
 TEST(PlanVerifierTest, StopsAtTheFailureThatPutsTheThresholdOutOfReach) {
   Scene scene;
-  // A plan that goes nowhere: it never reaches the goal, so every run fails.
-  std::vector<physics::ControlStep> idle(1);
-  idle[0].values.assign(scene.context.propagator().mapping().size(), 0.0);
-  idle[0].steps = 2;
+  const std::vector<physics::ControlStep> idle = idlePlan(scene);
   PlanVerifier verifier(scene.evaluator, kSeedBase);
   // 10 runs at 0.75: the third failure leaves at most 7 successes.
   const VerificationResult strict = verifier.verify(idle, 10, 0.75);
@@ -102,9 +107,7 @@ TEST(PlanVerifierTest, StopsAtTheSuccessThatMakesTheThresholdSure) {
 
 TEST(PlanVerifierTest, PastItsDeadlineACountIsCutShortAndAVerificationDoesNotPass) {
   Scene scene;
-  std::vector<physics::ControlStep> idle(1);
-  idle[0].values.assign(scene.context.propagator().mapping().size(), 0.0);
-  idle[0].steps = 2;
+  const std::vector<physics::ControlStep> idle = idlePlan(scene);
   PlanVerifier verifier(scene.evaluator, kSeedBase);
   verifier.stopAt(PlanVerifier::Clock::now());
   // No run is made: the verdict is undecided, and so not passed.
