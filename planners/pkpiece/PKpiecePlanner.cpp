@@ -42,10 +42,13 @@ void checkPlansCanBeCompared(const PKpieceSettings& settings) {
     throw std::invalid_argument(
         "plans " + std::to_string(settings.plans) +
         " needs verified plans to choose from: set uncertainty 1 and verify_runs > 0, or plans 1");
-  if (settings.aspiration > 0.0)
-    throw std::invalid_argument("aspiration " + std::to_string(settings.aspiration) +
-                                " needs plans' measured success: set uncertainty 1 and "
-                                "verify_runs > 0, or aspiration 0");
+  if (settings.aspiration > 0.0) {
+    std::ostringstream message;
+    message << "aspiration " << settings.aspiration
+            << " needs plans' measured success: set uncertainty 1 and verify_runs > 0, or "
+               "aspiration 0";
+    throw std::invalid_argument(message.str());
+  }
 }
 
 PlannerRegistry::Entry pKpiece() {
