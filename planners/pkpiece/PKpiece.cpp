@@ -199,6 +199,8 @@ void PKpiece::clear() {
   verificationRuns_ = 0;
   verified_.clear();
   patienceEnd_.reset();
+  deadline_.reset();  // the next solve() is given its own
+  verifier_.stopAt(std::nullopt);
   closest_ = nullptr;
   expansionsSinceProgress_ = 0;
   treeStart_ = 0;
@@ -820,9 +822,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
       if (const std::optional<VerifiedPlan> plan = verifyPlan(added)) {
         verified_.push_back(*plan);
         if (collectedEnough()) return returnBestCollected();
-        if (settings_.aspiration > 0.0 && !patienceEnd_)
-          patienceEnd_ = static_cast<std::size_t>(
-              std::ceil(static_cast<double>(motions_.size()) * (1.0 + settings_.patience)));
+        startPatience();
         if (patienceSpent()) return returnBestCollected();
         startAfresh();
         continue;
@@ -869,6 +869,12 @@ bool PKpiece::collectedEnough() const {
   return std::any_of(verified_.begin(), verified_.end(), [this](const VerifiedPlan& plan) {
     return plan.end->successEstimate >= settings_.aspiration;
   });
+}
+
+void PKpiece::startPatience() {
+  if (settings_.aspiration <= 0.0 || patienceEnd_) return;
+  patienceEnd_ = static_cast<std::size_t>(
+      std::ceil(static_cast<double>(motions_.size()) * (1.0 + settings_.patience)));
 }
 
 bool PKpiece::patienceSpent() const { return patienceEnd_ && motions_.size() >= *patienceEnd_; }

@@ -183,7 +183,7 @@ TEST(PKpieceTest, AMotionBudgetEndsTheSearchAsTheTimeLimitDoes) {
 TEST(PKpieceTest, PastItsDeadlineTheSearchEndsWhateverTheTerminationCondition) {
   // solve() gives p-KPIECE the end of its time limit (DeadlinePlanner), so that a plan's
   // verification stops there too; a search handed a deadline already past expands nothing,
-  // even under a condition that never ends it.
+  // even under a condition that never ends it, until clear().
   const core::Problem problem =
       core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
   const PlanRequest request = makeRequest(problem, "p-KPIECE", {}, seedRandomness(1));
@@ -199,6 +199,13 @@ TEST(PKpieceTest, PastItsDeadlineTheSearchEndsWhateverTheTerminationCondition) {
   ompl::base::PlannerData data(context.spaceInformation());
   planner->getPlannerData(data);
   EXPECT_EQ(data.numVertices(), 1u);  // the root alone
+  // clear() forgets the deadline: the next search runs until its own condition ends it.
+  planner->clear();
+  unsigned checks = 0;
+  planner->solve(ompl::base::PlannerTerminationCondition([&checks] { return ++checks > 5; }));
+  ompl::base::PlannerData after(context.spaceInformation());
+  planner->getPlannerData(after);
+  EXPECT_GT(after.numVertices(), 1u);
 }
 
 TEST(PKpieceTest, RestartsKeepAFixedSeedsPlanTheSameAtAnyThreads) {

@@ -6,7 +6,7 @@ namespace kautham::planners {
 
 /// A planner with steps that run long between two looks at the termination condition
 /// (p-KPIECE verifies a plan by executing it up to twice verify_runs times): solve() tells it
-/// when the time limit ends, before planning, so such a step stops there rather than run past
+/// when the time limit ends, before each solve, so such a step stops there rather than run past
 /// the limit and report a plan found after it. The termination condition itself is not asked
 /// inside those steps: how often it is asked must not depend on how the work is split (tests
 /// stop planners by counting its checks).

@@ -54,7 +54,8 @@ class PKpiece : public ompl::base::Planner,
   }
   /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
   void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
-  /// Plan verification stops there (PlanVerifier::stopAt), and so does the search.
+  /// Plan verification stops there (PlanVerifier::stopAt), and so does the search; clear()
+  /// forgets it.
   void setDeadline(Clock::time_point deadline) override;
 
  private:
@@ -201,6 +202,9 @@ class PKpiece : public ompl::base::Planner,
   /// True once the verified plans collected may end the search: `plans` of them, and one
   /// whose estimate reaches the aspiration.
   bool collectedEnough() const;
+  /// At the first verified plan below the aspiration: the search may grow `patience` times
+  /// the motions it holds now before it returns the best plan kept.
+  void startPatience();
   /// True once the search has grown `patience` times the motions it held at its first
   /// verified plan below the aspiration.
   bool patienceSpent() const;

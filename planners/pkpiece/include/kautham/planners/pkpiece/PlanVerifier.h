@@ -38,7 +38,8 @@ class PlanVerifier {
 
   /// From now on a count stops between two batches once `deadline` has passed (cutShort): a
   /// verification so cut does not pass, a measurement gives the rate of the runs it made.
-  void stopAt(Clock::time_point deadline) { deadline_ = deadline; }
+  /// std::nullopt: no deadline.
+  void stopAt(std::optional<Clock::time_point> deadline) { deadline_ = deadline; }
 
   /// Runs up to `runs` executions of `controls`; stops as soon as the rate over all `runs`
   /// is sure to reach `threshold` (enough have succeeded) or sure not to (too many have
