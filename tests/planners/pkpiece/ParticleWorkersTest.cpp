@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "TestPaths.h"
+#include "WorkBudget.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/PlanRequest.h"
 #include "kautham/planners/Solve.h"
@@ -172,12 +173,11 @@ PlanOutcome planWithThreads(const std::string& threads) {
   const PlanRequest request =
       makeRequest(problem, "p-KPIECE",
                   // Whole-plan verification included: its executions run in this process.
-                  {{"particles", "4"},
-                   {"candidates", "3"},
-                   {"verify_runs", "10"},
-                   {"goal_confidence", "0.2"},
-                   {"time_limit", "300"},
-                   {"threads", threads}},
+                  test::withWorkBudget({{"particles", "4"},
+                                        {"candidates", "3"},
+                                        {"verify_runs", "10"},
+                                        {"goal_confidence", "0.2"},
+                                        {"threads", threads}}),
                   seedRandomness(2));
   physics::PlanningContext context(problem, 0, request.propagation());
   return solve(context, request);

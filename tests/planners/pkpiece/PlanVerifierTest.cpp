@@ -8,6 +8,7 @@
 #include <ompl/util/Console.h>
 
 #include "TestPaths.h"
+#include "WorkBudget.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/core/Random.h"
 #include "kautham/physics/Execution.h"
@@ -28,7 +29,7 @@ struct Scene {
   core::Problem problem = core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
   PlanRequest request = makeRequest(
       problem, "p-KPIECE",
-      {{"particles", "4"}, {"candidates", "3"}, {"verify_runs", "0"}, {"time_limit", "300"}},
+      test::withWorkBudget({{"particles", "4"}, {"candidates", "3"}, {"verify_runs", "0"}}),
       seedRandomness(2));
   physics::PlanningContext context{problem, 0, request.propagation()};
   MotionEvaluator evaluator{context, 0.0};

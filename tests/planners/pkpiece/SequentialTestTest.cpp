@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "TestPaths.h"
+#include "WorkBudget.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/Solve.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
@@ -115,8 +116,8 @@ std::string property(const PlanOutcome& outcome, const std::string& name) {
 PlanOutcome plan(std::vector<ParameterOverride> overrides) {
   const core::Problem problem =
       core::loadProblem(test::repoFile("tests/data/pusher_cans_uncertain.xml"));
-  overrides.push_back({"time_limit", "300"});
-  const PlanRequest request = makeRequest(problem, "p-KPIECE", overrides, seedRandomness(2));
+  const PlanRequest request =
+      makeRequest(problem, "p-KPIECE", test::withWorkBudget(overrides), seedRandomness(2));
   physics::PlanningContext context(problem, 0, request.propagation());
   return solve(context, request);
 }
