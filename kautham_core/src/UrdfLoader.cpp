@@ -59,12 +59,58 @@ class UrdfConverter {
       model.links[model.joints[j].childLink].parentJoint = static_cast<int>(j);
     }
     model.rootLink = *model.findLink(urdf_.getRoot()->name);
+    requireConnected(model);
     return model;
   }
 
  private:
   [[noreturn]] void fail(const char* tag, const std::string& name, const std::string& msg) const {
     throw InputError({xml_.file(), lineOf(robot_, tag, name)}, msg);
+  }
+
+  /// Every link hangs from the root through its parent joints. urdfdom accepts joints that
+  /// close a loop away from the root (its root is merely the one link without a parent), and
+  /// the physics cannot build such a chain: name the loop instead.
+  void requireConnected(const KinematicModel& model) const {
+    std::vector<bool> reached(model.links.size(), false);
+    std::vector<int> pending{model.rootLink};
+    while (!pending.empty()) {
+      const int link = pending.back();
+      pending.pop_back();
+      if (reached[link]) continue;
+      reached[link] = true;
+      for (int j : model.links[link].childJoints) pending.push_back(model.joints[j].childLink);
+    }
+    for (std::size_t l = 0; l < model.links.size(); ++l) {
+      if (reached[l]) continue;
+      // Follow the parents from the link not reached: they come round to a link seen before.
+      std::vector<int> chain{static_cast<int>(l)};
+      std::vector<bool> seen(model.links.size(), false);
+      seen[l] = true;
+      int joint = model.links[l].parentJoint;
+      while (joint >= 0 && !seen[model.joints[joint].parentLink]) {
+        chain.push_back(model.joints[joint].parentLink);
+        seen[chain.back()] = true;
+        joint = model.links[chain.back()].parentJoint;
+      }
+      if (joint < 0)  // urdfdom refuses a second link without a parent; kept as a guard
+        fail("link", model.links[chain.back()].name,
+             "link '" + model.links[chain.back()].name +
+                 "' has no parent joint and is not the root link '" +
+                 model.links[model.rootLink].name + "'");
+      // The loop, parent to child, from the link the parents came round to.
+      const int repeated = model.joints[joint].parentLink;
+      std::string loop = model.links[repeated].name;
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+        loop += " -> " + model.links[*it].name;
+        if (*it == repeated) break;
+      }
+      fail("joint", model.joints[joint].name,
+           "joint '" + model.joints[joint].name + "': the links " + loop +
+               " form a loop, not connected to the root link '" + model.links[model.rootLink].name +
+               "'; every link but the root needs one parent joint, and its parents must lead "
+               "to the root");
+    }
   }
 
   /// Every mesh that could not be found, in one message: a user fixes the paths at once.

@@ -499,6 +499,9 @@ const MalformedCase kMalformedCases[] = {
     {"unknown_role", nullptr, 11, "unknown role 'goal'; expected fixed, movable or target"},
     {"missing_model", nullptr, 7, "model file 'objects/no_such_table.urdf' not found"},
     {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML"},
+    {"urdf_joint_loop", "joint_loop.urdf", 43,
+     "joint 'y': the links carriage_x -> carriage_y -> gripper -> carriage_x form a loop, not "
+     "connected to the root link 'base'"},
     {"urdf_mesh", "mesh.urdf", 6, "link 'top': mesh 'table.stl': file not found (looked for"},
     {"mesh_not_a_mesh", "mesh_not_a_mesh.urdf", 6,
      "mesh 'meshes/not_a_mesh.stl': not a readable mesh"},
