@@ -3,13 +3,13 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "ClutterGenerator.h"
 #include "Commands.h"
+#include "OutputFile.h"
 #include "SideGraspClutter.h"
 
 namespace kautham::apps {
@@ -26,11 +26,10 @@ struct GenerateOptions {
 
 int runGenerateClutter(const GenerateOptions& options) {
   const fs::path output(options.output);
+  requireOutputFile(output, "-o");
   if (fs::exists(output) && !options.force)
     throw std::invalid_argument(
         fmt::format("{} exists already; use --force to overwrite it", options.output));
-  if (fs::is_directory(output))
-    throw std::invalid_argument(fmt::format("{} is a folder, not a file", options.output));
 
   // The file name, not the folder, goes into the file: the same options give the same bytes
   // wherever the file is written.
@@ -52,11 +51,7 @@ int runGenerateClutter(const GenerateOptions& options) {
     blockers = std::count_if(placed.begin(), placed.end(), [](auto& o) { return o.blocker; });
   }
 
-  if (output.has_parent_path()) fs::create_directories(output.parent_path());
-  std::ofstream out(output, std::ios::binary);
-  out << xml;
-  out.close();
-  if (!out) throw std::runtime_error(fmt::format("could not write {}", options.output));
+  writeTextFile(output, xml);
 
   fmt::print("wrote     {}: {}, {} layout, {} objects ({} on the approach to the goal), seed {}\n",
              options.output, options.clutter.robot, options.clutter.layout, objects, blockers,

@@ -12,7 +12,7 @@
 #include <ompl/config.h>
 #include <ompl/util/Time.h>
 
-#include "PlanViewer.h"  // writeTextFile
+#include "OutputFile.h"
 
 namespace kautham::apps {
 

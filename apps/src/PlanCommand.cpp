@@ -15,6 +15,7 @@
 
 #include "Commands.h"
 #include "KauthamPlanners.h"
+#include "OutputFile.h"
 #include "PackagePathOption.h"
 #include "ParameterOverrides.h"
 #include "PlanFile.h"
@@ -157,7 +158,10 @@ void printSummary(const physics::PlanningContext& context, const planners::PlanR
 }
 
 int runPlan(const PlanOptions& options) {
-  // Before planning, so that a missing three.js does not cost the planning time.
+  // Before planning, so that a missing three.js or a mistyped output does not cost the
+  // planning time.
+  if (!options.output.empty()) requireOutputFile(options.output, "-o");
+  if (!options.html.empty()) requireOutputFile(options.html, "--html");
   const std::filesystem::path threeDir =
       options.html.empty() ? std::filesystem::path() : findThreeDir(options.threeDir);
   applyPackagePaths(options.packagePaths);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <ompl/config.h>
 
+#include "OutputFile.h"
 #include "ShapeJson.h"
 #include "VisualShapes.h"
 #include "kautham/core/Version.h"
@@ -193,15 +194,7 @@ json planToJson(const physics::PlanningContext& context, const planners::PlanReq
 }
 
 void writeJsonFile(const std::filesystem::path& file, const nlohmann::json& json) {
-  if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
-  const std::filesystem::path temporary = file.string() + ".tmp";
-  {
-    std::ofstream out(temporary);
-    if (!out) throw std::runtime_error("cannot write '" + temporary.string() + "'");
-    out << json.dump(1) << '\n';
-    if (!out) throw std::runtime_error("failed writing '" + temporary.string() + "'");
-  }
-  std::filesystem::rename(temporary, file);
+  writeTextFile(file, json.dump(1) + '\n');
 }
 
 }  // namespace kautham::apps

@@ -205,16 +205,4 @@ std::string planToHtml(const nlohmann::json& plan, const fs::path& threeDir) {
   return page;
 }
 
-void writeTextFile(const fs::path& file, const std::string& text) {
-  if (file.has_parent_path()) fs::create_directories(file.parent_path());
-  const fs::path temporary = file.string() + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out) throw std::runtime_error("cannot write '" + temporary.string() + "'");
-    out << text;
-    if (!out) throw std::runtime_error("failed writing '" + temporary.string() + "'");
-  }
-  fs::rename(temporary, file);
-}
-
 }  // namespace kautham::apps

@@ -37,7 +37,4 @@ nlohmann::json readPlanForView(const std::filesystem::path& file);
 /// `threeDir` (see findThreeDir) inlined. Throws ViewError when a library file cannot be read.
 std::string planToHtml(const nlohmann::json& plan, const std::filesystem::path& threeDir);
 
-/// Writes text to a file, through a temporary file, creating the folder if needed.
-void writeTextFile(const std::filesystem::path& file, const std::string& text);
-
 }  // namespace kautham::apps

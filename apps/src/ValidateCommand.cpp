@@ -17,6 +17,7 @@
 
 #include "Commands.h"
 #include "JsonFileText.h"
+#include "OutputFile.h"
 #include "PackagePathOption.h"
 #include "PlanFile.h"
 #include "kautham/core/PhysicsOverrides.h"
@@ -366,6 +367,7 @@ std::string describePhysicsOverrides(const std::vector<std::string>& fromPlan,
 }
 
 int runValidate(const ValidateOptions& options) {
+  if (!options.json.empty()) requireOutputFile(options.json, "--json");
   applyPackagePaths(options.packagePaths);
   std::vector<fs::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   core::Problem problem = core::loadProblem(options.problem, modelDirs);

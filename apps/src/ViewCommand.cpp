@@ -5,6 +5,7 @@
 
 #include "Commands.h"
 #include "KauthamPlanners.h"
+#include "OutputFile.h"
 #include "PackagePathOption.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
@@ -70,6 +71,8 @@ void writeTree(const nlohmann::json& plan, const ViewOptions& options) {
 int runView(const ViewOptions& options) {
   // The page is written unless only the tree picture was asked for.
   const bool page = !options.output.empty() || options.tree.empty();
+  if (!options.output.empty()) requireOutputFile(options.output, "-o");
+  if (!options.tree.empty()) requireOutputFile(options.tree, "--tree");
   const std::filesystem::path threeDir = page ? findThreeDir(options.threeDir) : "";
   const nlohmann::json plan =
       isProblemFile(options.plan) ? startScene(options) : readPlanForView(options.plan);

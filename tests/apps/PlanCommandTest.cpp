@@ -2,6 +2,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -143,6 +146,47 @@ TEST_F(PlanCommandTest, UnsolvedWithinTheTimeLimitExitsOne) {
   const CommandRun run = kautham("plan problems/pusher_cans_5.xml --seed 1 --time 0.01");
   EXPECT_EQ(run.exitCode, 1) << run.output;
   EXPECT_NE(run.output.find("solved    no"), std::string::npos) << run.output;
+}
+
+// An output that cannot be a file is refused before planning (exit 2), and nothing is replaced:
+// not a folder, not a device, not a link to nothing; no temporary file is left behind.
+TEST_F(PlanCommandTest, AnOutputThatCannotBeAFileIsRefusedBeforePlanning) {
+  const fs::path aFile = folder / "a_file";
+  std::ofstream(aFile) << "kept\n";
+  const fs::path dangling = folder / "dangling";
+  fs::create_symlink(folder / "nothing_there", dangling);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"-o " + folder.string(), "is a folder"},
+      {"-o " + (aFile / "plan.json").string(), "is not a folder"},
+      {"--html /dev/null", "the system's devices"},
+      {"-o " + dangling.string(), "a link to nothing"}};
+  for (const auto& [option, phrase] : cases) {
+    SCOPED_TRACE(option);
+    const CommandRun run = kautham("plan problems/pusher_cans_5.xml --seed 1 " + option);
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_NE(run.output.find(phrase), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("solved"), std::string::npos) << run.output;  // nothing planned
+  }
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(dangling)));
+  std::ifstream kept(aFile);
+  std::string line;
+  std::getline(kept, line);
+  EXPECT_EQ(line, "kept");
+  for (const auto& entry : fs::directory_iterator(folder))
+    EXPECT_NE(entry.path().extension(), ".tmp") << entry.path();
+}
+
+// Through a symbolic link the file it leads to is written, and the link stays.
+TEST_F(PlanCommandTest, APlanWrittenThroughALinkKeepsTheLink) {
+  const fs::path target = folder / "target.json";
+  std::ofstream(target) << "{}\n";
+  const fs::path link = folder / "link.json";
+  fs::create_symlink(target, link);
+  const CommandRun run = kautham("plan problems/pusher_free.xml --seed 1 -o " + link.string());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::is_symlink(fs::symlink_status(link)));
+  EXPECT_EQ(readJson(target)["format"], "kautham-plan");
 }
 
 TEST_F(PlanCommandTest, AValueNotMeasuredYetPrintsAsADash) {
