@@ -1,6 +1,7 @@
 #include "BenchSpec.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <set>
@@ -138,6 +139,13 @@ void checkSpec(const BenchSpec& spec) {
   if (spec.runs == 0) throw std::invalid_argument("--runs must be at least 1");
   if (spec.seed == 0)
     throw std::invalid_argument("--seed must be at least 1 (run r plans with seed + r)");
+  // The seeds are 32-bit (plan --seed): the last run's must be one too.
+  if (spec.seed - 1ull + spec.runs > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument(
+        fmt::format("--seed {} with --runs {}: the last run would plan with seed {}, above {}; "
+                    "use a smaller seed",
+                    spec.seed, spec.runs, spec.seed - 1ull + spec.runs,
+                    std::numeric_limits<std::uint32_t>::max()));
   if (spec.time && !(*spec.time > 0.0)) throw std::invalid_argument("--time must be positive");
   if (spec.threads && *spec.threads == 0) throw std::invalid_argument("--threads must be >= 1");
   if (!spec.name.empty()) checkName(spec.name, "benchmark name");

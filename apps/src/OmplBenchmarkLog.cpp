@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <locale>
 #include <map>
 #include <set>
@@ -79,7 +80,7 @@ std::string setupText(const json& first, const std::vector<Planner>& planners) {
   for (const Planner& p : planners)
     text += p.name + ": " + describeSetup(p.runs.front()->at("setup")) + "\n";
   text += fmt::format("run r of every configuration plans with seed {} + r\n",
-                      first.value("bench_seed", 1));
+                      first.value("bench_seed", std::uint64_t{1}));
   return text;
 }
 
@@ -194,7 +195,7 @@ std::string omplBenchmarkLog(const std::vector<json>& results) {
   out << "Starting at " << startDate(results) << '\n';
   out << "<<<|\n" << setupText(first, planners) << "|>>>\n";
   out << "<<<|\n" << cpuText(results) << "|>>>\n";
-  out << first.value("bench_seed", 1) << " is the random seed\n";
+  out << first.value("bench_seed", std::uint64_t{1}) << " is the random seed\n";
   out << number(timeLimit) << " seconds per run\n";
   out << "0 MB per run\n";  // bench sets no memory limit
   out << runs << " runs per planner\n";

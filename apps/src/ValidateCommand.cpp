@@ -70,7 +70,8 @@ void keepOnly(core::Problem& problem, const std::vector<std::string>& only) {
 
 /// What validate needs of a plan file (PlanFile.cpp's format).
 struct PlanControls {
-  std::string query;  ///< the query's name; empty: the first query
+  std::string problem;  ///< the name of the problem it was made for; empty: not recorded
+  std::string query;    ///< the query's name; empty: the first query
   /// The <Physics> attributes `kautham plan --physics` set (NAME=VALUE), to be set again.
   std::vector<std::string> physics;
   double propagationStepSize = 0.0;
@@ -94,6 +95,8 @@ class PlanReader {
                        plan.value("format_version", json()).dump(), kPlanFormatVersion));
     PlanControls result;
     const json problem = plan.value("problem", json::object());
+    if (problem.is_object() && problem.value("name", json()).is_string())
+      result.problem = problem["name"].get<std::string>();
     if (problem.is_object() && problem.contains("query")) {
       if (!problem["query"].is_string()) fail("query", "\"query\" must be a string");
       result.query = problem["query"].get<std::string>();
@@ -374,6 +377,13 @@ int runValidate(const ValidateOptions& options) {
   keepOnly(problem, options.only);
   PlanReader reader(options.plan);
   const PlanControls plan = reader.read();
+  // A variant of the problem (other uncertainty, say) is a fair test of a plan, and is named
+  // otherwise: warn, do not refuse.
+  if (!plan.problem.empty() && plan.problem != problem.name)
+    fmt::print(stderr,
+               "warning: {} was made for the problem '{}', not '{}' ({}); its controls are "
+               "executed as they are\n",
+               options.plan, plan.problem, problem.name, options.problem);
   try {
     core::applyPhysicsOverrides(problem.physics, plan.physics);
   } catch (const std::invalid_argument& e) {

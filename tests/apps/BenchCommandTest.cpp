@@ -367,6 +367,12 @@ TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
       kautham("bench problems/pusher_free.xml --config 'x=KPIECE:goal_bias=7' " + out());
   EXPECT_EQ(set.exitCode, 2);
   EXPECT_NE(set.output.find("goal_bias"), std::string::npos) << set.output;
+  // Seeds are 32-bit: the last run's seed (seed + runs - 1) must be one.
+  const CommandRun seed = kautham(
+      "bench problems/pusher_free.xml --planner KPIECE --seed 4294967295 --runs 2 " + out());
+  EXPECT_EQ(seed.exitCode, 2);
+  EXPECT_NE(seed.output.find("the last run would plan with seed 4294967296"), std::string::npos)
+      << seed.output;
   EXPECT_FALSE(fs::exists(folder / "out")) << "nothing may run";
 
   const fs::path file = folder / "bad.json";

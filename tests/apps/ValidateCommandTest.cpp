@@ -96,6 +96,19 @@ TEST_F(ValidateCommandTest, WithoutUncertaintyEveryRunSucceeds) {
   EXPECT_NE(run.output.find("failures     0\n"), std::string::npos) << run.output;
 }
 
+// A plan run against another problem than its own is executed, with a warning naming both.
+TEST_F(ValidateCommandTest, APlanForAnotherProblemIsRunWithAWarning) {
+  const CommandRun other =
+      kautham("validate problems/pusher_free.xml " + quoted(plan()) + " --runs 1");
+  EXPECT_EQ(other.exitCode, 0) << other.output;
+  EXPECT_NE(other.output.find("was made for the problem 'pusher_cans_5', not 'pusher_free'"),
+            std::string::npos)
+      << other.output;
+  const CommandRun own =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(plan()) + " --runs 1");
+  EXPECT_EQ(own.output.find("was made for the problem"), std::string::npos) << own.output;
+}
+
 TEST_F(ValidateCommandTest, LargeUncertaintyMakesRunsFailAndCountsWhy) {
   const fs::path json = folder / "validation.json";
   const std::string command = "validate tests/data/pusher_cans_5_uncertain.xml " + quoted(plan()) +
