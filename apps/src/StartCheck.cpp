@@ -26,6 +26,15 @@ std::unique_ptr<physics::PlanningContext> makeCheckedContext(const core::Problem
   if (context->startViolation() != physics::Violation::None)
     throw core::InputError(where, std::string("the start state is invalid: ") +
                                       physics::toString(context->startViolation()));
+  // Objects start asleep: one placed in the air would hang there until touched. A warning, as
+  // a scene may mean it (an object set down by a hand the problem does not model).
+  for (const physics::RestlessObject& r : context->restlessAtStart())
+    fmt::print(stderr,
+               "warning: {}: object '{}' does not rest where the start puts it: left alone it "
+               "moves {:.1f} cm and tilts {:.2f} rad in a second (it floats, falls, slides or "
+               "tips), yet it starts asleep and stays put until touched; set its <Home> so it "
+               "stands on its support\n",
+               where.str(), r.name, 100.0 * r.moved, r.tilted);
   return context;
 }
 

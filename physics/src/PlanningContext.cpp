@@ -92,6 +92,7 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   start_[layout_->flagsIndex()] = world_->takeEvents();
   startViolation_ = validity_->check(start_.data());
   start_[layout_->flagsIndex()] = 0.0;
+  if (startOverlaps_.empty()) restlessAtStart_ = restlessObjects(*world_, start_);
 
   goal_ =
       std::make_shared<WorkspaceGoal>(si_, layout_, makeGoalSpec(problem_, query().goal, *layout_));

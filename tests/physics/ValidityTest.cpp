@@ -230,6 +230,28 @@ TEST(ValidityTest, ObjectsInterpenetratingTheEnvironmentAtTheStartAreReported) {
   EXPECT_GT(overlaps[0].depth, 0.005);
 }
 
+// Objects start asleep, so one placed in the air would hang there: the start is left to rest
+// once, and the objects that fall, slide or tip are named; the shipped scenes have none.
+TEST(ValidityTest, ObjectsThatDoNotRestAtTheStartAreNamed) {
+  for (const char* file : {"problems/kuka_clutter_40.xml", "problems/yumi_clutter_40.xml"})
+    EXPECT_TRUE(ContextFixture(file).context.restlessAtStart().empty()) << file;
+  core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_cans_5.xml"));
+  const PlanningContext resting(problem, 0, PropagationSettings{});
+  EXPECT_TRUE(resting.restlessAtStart().empty());
+  problem.objects[*problem.findObject("can2")].home.position.z() += 0.05;  // 5 cm up
+  const PlanningContext floating(problem, 0, PropagationSettings{});
+  const auto& restless = floating.restlessAtStart();
+  ASSERT_EQ(restless.size(), 1u);
+  EXPECT_EQ(restless[0].name, "can2");
+  EXPECT_GT(restless[0].moved, 0.04);
+  // The start itself is kept: the can is still where the file puts it, 5 cm up, asleep.
+  std::size_t can2 = 0;
+  while (floating.layout().bodies[can2].name != "can2") ++can2;
+  EXPECT_NEAR(WorldLayout::position(floating.startState().data(), can2).z() -
+                  WorldLayout::position(resting.startState().data(), can2).z(),
+              0.05, 1e-9);
+}
+
 TEST(ValidityTest, ARobotStartingInsideTheEnvironmentIsInvalid) {
   core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_shelf.xml"));
   // <Init> leaves the y joint at 0: the gripper starts at its home, here with the fingers'

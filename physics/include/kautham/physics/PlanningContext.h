@@ -11,6 +11,7 @@
 #include "kautham/core/Problem.h"
 #include "kautham/physics/EndEffectorProjection.h"
 #include "kautham/physics/PhysicsPropagator.h"
+#include "kautham/physics/RestingSink.h"
 #include "kautham/physics/WorkspaceGoal.h"
 #include "kautham/physics/World.h"
 #include "kautham/physics/WorldStateSpace.h"
@@ -65,6 +66,9 @@ class PlanningContext {
   Violation startViolation() const { return startViolation_; }
   /// Pairs of things that interpenetrate at the start (more than 2 mm): a scene error.
   const std::vector<Overlap>& startOverlaps() const { return startOverlaps_; }
+  /// Objects that do not rest where the start puts them (restlessObjects()): they would float
+  /// asleep until touched. Not looked for when things interpenetrate at the start.
+  const std::vector<RestlessObject>& restlessAtStart() const { return restlessAtStart_; }
 
  private:
   core::Problem problem_;
@@ -81,6 +85,7 @@ class PlanningContext {
   std::vector<double> start_;
   Violation startViolation_ = Violation::None;
   std::vector<Overlap> startOverlaps_;
+  std::vector<RestlessObject> restlessAtStart_;
 };
 
 }  // namespace kautham::physics

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "kautham/physics/World.h"
@@ -17,5 +18,18 @@ bool hasSoftContacts(const World& world);
 /// (moves less than 1 cm sideways, tilts less than 0.1 rad), 0 for the robot and for objects that
 /// slide or tip (they are not resting). The validity checker does not count this sink as a drop.
 std::vector<double> restingSink(World& world, const std::vector<double>& start);
+
+/// An object that does not rest where the start puts it.
+struct RestlessObject {
+  std::string name;
+  double moved = 0.0;   ///< metres, in the settling second
+  double tilted = 0.0;  ///< radians
+};
+
+/// The objects that do not rest at the start: stepped as restingSink() steps it, they move more
+/// than 2 cm (sideways, on soft contacts, where resting objects sink) or tilt more than 0.2
+/// rad: they float, fall, slide or tip. Objects start asleep (physics.md, "Sleeping objects"), so
+/// such an object would stay where it is, in the air, until something touched it.
+std::vector<RestlessObject> restlessObjects(World& world, const std::vector<double>& start);
 
 }  // namespace kautham::physics
