@@ -109,6 +109,8 @@ std::optional<bool> flagWord(const std::string& text) {
 }
 
 std::optional<double> numberWord(const std::string& text) {
+  // Decimal numbers only: strtod also reads hexadecimal ("0x10" as 16, "0x0.1p0").
+  if (text.find_first_not_of("0123456789+-.eE \t\n") != std::string::npos) return std::nullopt;
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) return std::nullopt;

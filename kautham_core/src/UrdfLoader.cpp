@@ -126,6 +126,9 @@ class UrdfConverter {
   /// urdfdom leaves out what it cannot read (a <collision> whose <geometry> it does not know,
   /// say) without failing: compare with the file, so no collision shape is lost silently.
   void checkNothingDropped(const urdf::Link& source, const tinyxml2::XMLElement& element) const {
+    static constexpr const char* kCollisionNeeds =
+        " <collision> elements; each needs a <geometry> with one <box>, <cylinder>, <sphere> or "
+        "<mesh filename=..>";
     int written = 0;
     const tinyxml2::XMLElement* firstMissing = nullptr;
     for (auto* c = element.FirstChildElement("collision"); c;
@@ -136,14 +139,17 @@ class UrdfConverter {
     int read = 0;
     for (const auto& collision : source.collision_array) read += collision && collision->geometry;
     if (read == written) return;
+    // urdfdom's own complaint comes first when it has one (a mass that is not a number drops
+    // the link's collisions too): that is what to fix.
+    if (!urdfMessages_.empty())
+      throw InputError({xml_.file(), element.GetLineNum()},
+                       "link '" + source.name + "': urdfdom could not read it: " + urdfMessages_ +
+                           " (so it read " + std::to_string(read) + " of its " +
+                           std::to_string(written) + kCollisionNeeds + ")");
     const int line = firstMissing ? firstMissing->GetLineNum() : element.GetLineNum();
-    throw InputError(
-        {xml_.file(), line},
-        "link '" + source.name + "': urdfdom read " + std::to_string(read) + " of its " +
-            std::to_string(written) +
-            " <collision> elements; each needs a <geometry> with one <box>, "
-            "<cylinder>, <sphere> or <mesh filename=..>" +
-            (urdfMessages_.empty() ? std::string() : " (urdfdom: " + urdfMessages_ + ")"));
+    throw InputError({xml_.file(), line}, "link '" + source.name + "': urdfdom read " +
+                                              std::to_string(read) + " of its " +
+                                              std::to_string(written) + kCollisionNeeds);
   }
 
   Link convertLink(const urdf::Link& source, const tinyxml2::XMLElement& element) {

@@ -112,7 +112,8 @@ TEST(ParameterSet, BooleanAcceptsTrueFalseOneZero) {
 
 TEST(ParameterSet, RealRejectsTextNanAndInfinity) {
   ParameterSet set(someSpecs());
-  for (const std::string text : {"abc", "nan", "NaN", "inf", "-inf", "", "0.5x", "0.5 0.6"}) {
+  for (const std::string text :
+       {"abc", "nan", "NaN", "inf", "-inf", "", "0.5x", "0.5 0.6", "0x0.1p0", "0x1"}) {
     SCOPED_TRACE(text);
     expectInvalidArgument([&] { set.set("goal_bias", text); },
                           {"goal_bias", "expects a number", "'" + text + "'"});
