@@ -304,6 +304,9 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
   command->add_option("--planner", options->planner,
                       "check with this planner instead of the file's (see `kautham planners`)");
   addPackagePathOption(*command, options->packagePaths);
+  command->footer(
+      "Exit codes: 0 the problem loads with a valid start, 2 bad input (the message names the "
+      "file and line).\nExample: kautham check problems/kuka_clutter_20.xml");
   command->callback(
       [options, &exitCode] { exitCode = runReportingErrors([&] { return runCheck(*options); }); });
 }

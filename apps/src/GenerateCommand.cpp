@@ -64,6 +64,7 @@ int runGenerateClutter(const GenerateOptions& options) {
 void addGenerateCommand(CLI::App& app, int& exitCode) {
   CLI::App* generate = app.add_subcommand("generate", "Write generated problem files");
   generate->require_subcommand(1);
+  generate->footer("Exit codes: 0 written, 2 bad input.");
 
   auto options = std::make_shared<GenerateOptions>();
   CLI::App* clutter = generate->add_subcommand(
@@ -93,6 +94,7 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
   clutter->add_option("-o,--output", options->output, "problem file to write (XML)")->required();
   clutter->add_flag("-f,--force", options->force, "overwrite the output file if it exists");
   clutter->footer(
+      "Exit codes: 0 written, 2 bad input (or too many objects for the zone).\n"
       "Example: kautham generate clutter --robot kuka --objects 10 --seed 3 -o "
       "problems/kuka_clutter_10.xml");
   clutter->callback([options, &exitCode] {

@@ -221,7 +221,7 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   command->add_option("problem", options->problem, "problem file (XML)")->required();
   command->add_option("--planner", options->planner, "planner name (see `kautham planners`)");
   command->add_option("--time", options->time, "planning time limit in seconds")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(0.01, 86400.0));
   command->add_option("--threads", options->threads,
                       "processes for p-KPIECE's particles, same as --set threads=N (the plan "
                       "does not depend on it)");

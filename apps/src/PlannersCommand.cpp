@@ -83,6 +83,7 @@ void addPlannersCommand(CLI::App& app, int& exitCode) {
   auto markdown = std::make_shared<bool>(false);
   command->add_flag("--markdown", *markdown,
                     "print markdown tables (docs/planners.md is made from them)");
+  command->footer("Exit codes: 0 listed, 2 a plugin that does not load.");
   command->callback([&exitCode, markdown] {
     if (*markdown) {
       printMarkdown();

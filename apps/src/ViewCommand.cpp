@@ -103,14 +103,18 @@ void addViewCommand(CLI::App& app, int& exitCode) {
   addPackagePathOption(*command, options->packagePaths);
   command->add_option("--query", options->query, "the query whose start a problem file shows")
       ->capture_default_str();
-  command->add_option("-o,--output", options->output,
-                      "HTML file to write (default: the plan file with extension .html)");
+  command->add_option(
+      "-o,--output", options->output,
+      "HTML file to write (default: the plan or problem file with extension .html)");
   command->add_option("--tree", options->tree,
                       "also write an SVG picture of the search tree seen from above");
   command->add_option("--three-dir", options->threeDir,
                       "folder with three.min.js and examples/js/controls/OrbitControls.js "
                       "(default: " +
                           kDefaultThreeDir.string() + ", from Debian's libjs-three)");
+  command->footer(
+      "Exit codes: 0 written, 2 bad input.\nExample: kautham view out/plan.json -o "
+      "out/plan.html --tree out/tree.svg");
   command->callback(
       [options, &exitCode] { exitCode = runReportingErrors([&] { return runView(*options); }); });
 }
