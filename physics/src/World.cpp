@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ContainedCentres.h"
 #include "GeomTag.h"
 #include "OdeMeshData.h"
 
@@ -142,6 +143,24 @@ std::vector<int> World::takeTouchedBodies() {
   return touched;
 }
 
+namespace {
+
+/// The box-cylinder overlaps ODE's collider misses (ContainedCentres.h), added to `overlaps`.
+void addContainedCentres(dSpaceID space, double depth, std::vector<Overlap>& overlaps) {
+  for (const ContainedPair& pair : containedCentres(space, depth)) {
+    const auto* inner = static_cast<const GeomTag*>(dGeomGetData(pair.inner));
+    const auto* outer = static_cast<const GeomTag*>(dGeomGetData(pair.outer));
+    if (!inner || !outer || (inner->isRobot() && outer->isRobot())) continue;
+    const bool known = std::any_of(overlaps.begin(), overlaps.end(), [&](const Overlap& o) {
+      return (o.first == inner->name && o.second == outer->name) ||
+             (o.first == outer->name && o.second == inner->name);
+    });
+    if (!known) overlaps.push_back({inner->name, outer->name, pair.depth});
+  }
+}
+
+}  // namespace
+
 std::vector<Overlap> World::probeContacts(double depth) {
   std::vector<Overlap> overlaps;
   overlaps_ = &overlaps;
@@ -149,6 +168,7 @@ std::vector<Overlap> World::probeContacts(double depth) {
   dSpaceCollide(space_, this, &World::nearCallback);
   dJointGroupEmpty(contactGroup_);
   overlaps_ = nullptr;
+  addContainedCentres(space_, depth, overlaps);
   return overlaps;
 }
 

@@ -216,6 +216,24 @@ TEST(ValidityTest, RobotTouchingAShelfBoardIsInvalid) {
   EXPECT_LT(y, 0.36);  // ... inside the workspace: it is the board that made the state invalid
 }
 
+// ODE's box-cylinder collider finds no contact when the centre of one lies inside the other:
+// the start probe looks for it, so a can standing around the pusher's 2 cm palm is reported.
+TEST(ValidityTest, ARobotStartingInsideACanIsReported) {
+  core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_cans_5.xml"));
+  const PlanningContext clear(problem, 0, PropagationSettings{});
+  EXPECT_TRUE(clear.startOverlaps().empty());
+  const Eigen::Vector3d palm = clear.layout().goalLinkPosition(clear.startState().data());
+  core::Pose& can1 = problem.objects[*problem.findObject("can1")].home;
+  can1.position.x() = palm.x();
+  can1.position.y() = palm.y();
+  const PlanningContext inside(problem, 0, PropagationSettings{});
+  const auto& overlaps = inside.startOverlaps();
+  ASSERT_EQ(overlaps.size(), 1u);
+  EXPECT_EQ(overlaps[0].first, "pusher/gripper");
+  EXPECT_EQ(overlaps[0].second, "can1");
+  EXPECT_GT(overlaps[0].depth, 0.01);
+}
+
 TEST(ValidityTest, ObjectsInterpenetratingTheEnvironmentAtTheStartAreReported) {
   core::Problem problem = core::loadProblem(test::repoFile("problems/pusher_shelf.xml"));
   PlanningContext fine(problem, 0, PropagationSettings{});
