@@ -10,7 +10,8 @@ path drawn: what a plan did to the scene, at a glance.
 
 Usage: /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_20.xml -o docs/images/kuka_clutter_20.svg
        /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_30.xml --plan out/plan.json -o out/after.svg
-Reads the blocker names from `kautham check` ($KAUTHAM or build/apps/kautham). Needs matplotlib.
+Reads the blocker names from `kautham check` ($KAUTHAM or build/apps/kautham). Needs matplotlib; run by another python3 without it, it runs itself again with
+/usr/bin/python3 (Debian's, with python3-matplotlib).
 """
 import argparse
 import json
@@ -21,7 +22,18 @@ import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    # Another python3 (a virtual environment, pyenv) may lack Debian's matplotlib: run again
+    # with Debian's own, once; without it, say what to install instead of a traceback.
+    FALLBACK = "/usr/bin/python3"
+    if (os.path.realpath(sys.executable) != os.path.realpath(FALLBACK)
+            and os.path.exists(FALLBACK) and not os.environ.get("SCENE_PICTURE_REEXEC")):
+        os.environ["SCENE_PICTURE_REEXEC"] = "1"
+        os.execv(FALLBACK, [FALLBACK, os.path.abspath(__file__)] + sys.argv[1:])
+    sys.exit("scene-picture: matplotlib is missing (Debian: apt-get install python3-matplotlib, "
+             "then run with /usr/bin/python3)")
 
 matplotlib.use("Agg")
 # Text stays text in the SVG: searchable, and smaller than glyphs drawn as paths.
