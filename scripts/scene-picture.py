@@ -10,8 +10,9 @@ path drawn: what a plan did to the scene, at a glance.
 
 Usage: /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_20.xml -o docs/images/kuka_clutter_20.svg
        /usr/bin/python3 scripts/scene-picture.py problems/kuka_clutter_30.xml --plan out/plan.json -o out/after.svg
-Reads the blocker names from `kautham check` ($KAUTHAM or build/apps/kautham). Needs matplotlib; run by another python3 without it, it runs itself again with
-/usr/bin/python3 (Debian's, with python3-matplotlib).
+Reads the blocker names from `kautham check` ($KAUTHAM or build/apps/kautham). Needs matplotlib;
+run by another python3 without it, it runs itself again with /usr/bin/python3 (Debian's, with
+python3-matplotlib).
 """
 import argparse
 import json
