@@ -74,9 +74,13 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   validity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data());
   knowledgeValidity_ = std::make_shared<WorldValidityChecker>(si_, layout_, problem_, start_.data(),
                                                               ValidityRules::KnowledgeOnly);
-  // Objects on soft contacts (Kautham's CFM) settle centimetres into the ground: no drop.
-  if (hasSoftContacts(*world_)) {
-    const std::vector<double> sink = restingSink(*world_, start_);
+  // Objects on soft contacts (Kautham's CFM) settle centimetres into the ground: no drop. The
+  // start is left to rest once, for this and for the restless objects below.
+  const bool soft = hasSoftContacts(*world_);
+  std::vector<double> settled;
+  if (soft) {
+    settled = settledStart(*world_, start_);
+    const std::vector<double> sink = restingSink(*layout_, start_, settled);
     validity_->allowRestingSink(sink);
     knowledgeValidity_->allowRestingSink(sink);
   }
@@ -92,7 +96,10 @@ PlanningContext::PlanningContext(const core::Problem& problem, std::size_t query
   start_[layout_->flagsIndex()] = world_->takeEvents();
   startViolation_ = validity_->check(start_.data());
   start_[layout_->flagsIndex()] = 0.0;
-  if (startOverlaps_.empty()) restlessAtStart_ = restlessObjects(*world_, start_);
+  if (startOverlaps_.empty()) {
+    if (settled.empty()) settled = settledStart(*world_, start_);
+    restlessAtStart_ = restlessObjects(*layout_, start_, settled, soft);
+  }
 
   goal_ =
       std::make_shared<WorkspaceGoal>(si_, layout_, makeGoalSpec(problem_, query().goal, *layout_));

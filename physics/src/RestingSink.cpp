@@ -15,8 +15,14 @@ constexpr double kTinySpeed = -1e-9;    // m/s: wakes an object (World::writeSta
 constexpr double kRestlessMove = 0.02;  // m
 constexpr double kRestlessTilt = 0.2;   // rad
 
-/// The start left to rest: stepped for kSettleTime with the robot held still and every object
-/// awake; the world is then put back in `start` exactly, and the settled state returned.
+double tiltChange(const std::vector<double>& start, const std::vector<double>& settled,
+                  std::size_t body) {
+  return std::abs(core::tiltAngle(WorldLayout::orientation(settled.data(), body)) -
+                  core::tiltAngle(WorldLayout::orientation(start.data(), body)));
+}
+
+}  // namespace
+
 std::vector<double> settledStart(World& world, const std::vector<double>& start) {
   const WorldLayout& layout = world.layout();
   std::vector<double> awake = start;
@@ -37,14 +43,6 @@ std::vector<double> settledStart(World& world, const std::vector<double>& start)
   return settled;
 }
 
-double tiltChange(const std::vector<double>& start, const std::vector<double>& settled,
-                  std::size_t body) {
-  return std::abs(core::tiltAngle(WorldLayout::orientation(settled.data(), body)) -
-                  core::tiltAngle(WorldLayout::orientation(start.data(), body)));
-}
-
-}  // namespace
-
 bool hasSoftContacts(const World& world) {
   const ContactParameters& c = world.contactParameters();
   if (!(c.cfm > 0.0)) return false;
@@ -54,10 +52,8 @@ bool hasSoftContacts(const World& world) {
   return kGravity / spring > kMeasurable;
 }
 
-std::vector<double> restingSink(World& world, const std::vector<double>& start) {
-  const WorldLayout& layout = world.layout();
-  const std::vector<double> settled = settledStart(world, start);
-
+std::vector<double> restingSink(const WorldLayout& layout, const std::vector<double>& start,
+                                const std::vector<double>& settled) {
   std::vector<double> sink(layout.bodies.size(), 0.0);
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
     if (layout.bodies[b].role == BodyRole::Robot) continue;
@@ -70,12 +66,11 @@ std::vector<double> restingSink(World& world, const std::vector<double>& start) 
   return sink;
 }
 
-std::vector<RestlessObject> restlessObjects(World& world, const std::vector<double>& start) {
-  const WorldLayout& layout = world.layout();
-  const std::vector<double> settled = settledStart(world, start);
+std::vector<RestlessObject> restlessObjects(const WorldLayout& layout,
+                                            const std::vector<double>& start,
+                                            const std::vector<double>& settled, bool soft) {
   // On soft contacts a resting object sinks, heavy ones by more than 10 cm (Kautham's walls):
   // only a move sideways tells there that it does not rest.
-  const bool soft = hasSoftContacts(world);
   std::vector<RestlessObject> restless;
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
     if (layout.bodies[b].role == BodyRole::Robot) continue;
