@@ -56,28 +56,38 @@ void printRobot(const core::RobotInstance& robot) {
 }
 
 /// Robot links that move but have no mass (no <inertial>, nor one on a link fixed to them): the
-/// physics gives their body a small default, which decides how hard they push.
+/// physics gives their body a small default, which decides how hard they push. A <mass> written
+/// as zero is named with its line: that is the line to fix.
 void warnMasslessLinks(const core::RobotInstance& robot) {
   const core::KinematicModel& model = robot.model;
-  std::vector<std::string> massless;
+  std::vector<std::string> withoutInertial;
   for (int j : model.movableJoints()) {
     double mass = 0.0;
+    const core::Link* zeroMass = nullptr;
     std::vector<int> pending{model.joints[j].childLink};
     while (!pending.empty()) {
-      const int link = pending.back();
+      const core::Link& link = model.links[static_cast<std::size_t>(pending.back())];
       pending.pop_back();
-      mass += model.links[static_cast<std::size_t>(link)].inertial.mass;
-      for (int c : model.links[static_cast<std::size_t>(link)].childJoints)
+      mass += link.inertial.mass;
+      if (link.inertial.massLine > 0 && !zeroMass) zeroMass = &link;
+      for (int c : link.childJoints)
         if (!model.joints[c].isMovable()) pending.push_back(model.joints[c].childLink);
     }
-    if (!(mass > 0.0))
-      massless.push_back(model.links[static_cast<std::size_t>(model.joints[j].childLink)].name);
+    if (mass > 0.0) continue;
+    if (zeroMass)
+      core::warning(fmt::format(
+          "{}:{}: robot link '{}' has a zero <mass> (its body gets 0.1 kg, which sets how hard "
+          "it pushes); give it its real, positive mass (kg)",
+          robot.urdf.string(), zeroMass->inertial.massLine, zeroMass->name));
+    else
+      withoutInertial.push_back(
+          model.links[static_cast<std::size_t>(model.joints[j].childLink)].name);
   }
-  if (!massless.empty())
+  if (!withoutInertial.empty())
     core::warning(fmt::format(
         "{}: robot links without <inertial> (their bodies get 0.1 kg, which sets how hard they "
         "push): {}",
-        robot.urdf.string(), fmt::join(massless, ", ")));
+        robot.urdf.string(), fmt::join(withoutInertial, ", ")));
 }
 
 /// Deeper than this, two of the robot's own links overlap for real, not by a modelling sliver.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -108,13 +109,29 @@ std::optional<bool> flagWord(const std::string& text) {
   return std::nullopt;
 }
 
-std::optional<double> numberWord(const std::string& text) {
+namespace {
+
+bool isDecimal(const std::string& text) {
   // Decimal numbers only: strtod also reads hexadecimal ("0x10" as 16, "0x0.1p0").
-  if (text.find_first_not_of("0123456789+-.eE \t\n") != std::string::npos) return std::nullopt;
+  return text.find_first_not_of("0123456789+-.eE \t\n") == std::string::npos;
+}
+
+}  // namespace
+
+std::optional<double> numberWord(const std::string& text) {
+  if (!isDecimal(text)) return std::nullopt;
   char* end = nullptr;
   const double value = std::strtod(text.c_str(), &end);
   if (end == text.c_str() || *end != '\0' || !std::isfinite(value)) return std::nullopt;
   return value;
+}
+
+bool beyondDouble(const std::string& text) {
+  if (!isDecimal(text)) return false;
+  char* end = nullptr;
+  errno = 0;
+  const double value = std::strtod(text.c_str(), &end);
+  return end != text.c_str() && *end == '\0' && errno == ERANGE && std::isinf(value);
 }
 
 namespace {
@@ -126,6 +143,12 @@ double parseValue(const ParameterSpec& spec, const std::string& text) {
                                 text + "'");
   }
   const std::optional<double> number = numberWord(text);
+  if (!number && beyondDouble(text))
+    throw std::invalid_argument("parameter '" + spec.name + "' is out of range: " + text +
+                                " is beyond the largest number a double holds (about 1.8e308); "
+                                "it must be in [" +
+                                spec.formatValue(spec.min) + ", " + spec.formatValue(spec.max) +
+                                "]");
   if (!number)
     throw std::invalid_argument("parameter '" + spec.name + "' expects a number, got '" + text +
                                 "'");

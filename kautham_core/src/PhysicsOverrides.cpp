@@ -15,6 +15,9 @@ namespace {
 
 double parseNumber(const std::string& text) {
   if (const std::optional<double> number = numberWord(text)) return *number;
+  if (beyondDouble(text))
+    throw std::invalid_argument("out of range: " + text +
+                                " is beyond the largest number a double holds (about 1.8e308)");
   throw std::invalid_argument("expected a number, got '" + text + "'");
 }
 

@@ -27,6 +27,17 @@ namespace {
 using tinyxml2::XMLElement;
 namespace fs = std::filesystem;
 
+/// Names for a message about a name that is not among them: all of a few, the first ten of
+/// many (a robot with hands has dozens of links), so the message stays readable.
+std::string someNames(const std::vector<std::string>& names) {
+  constexpr std::size_t kShown = 10;
+  std::string list;
+  for (std::size_t i = 0; i < names.size() && i < kShown; ++i)
+    list += (i == 0 ? "" : ", ") + names[i];
+  if (names.size() > kShown) list += " and " + std::to_string(names.size() - kShown) + " more";
+  return names.empty() ? "none" : list;
+}
+
 /// Kautham's physics parameter names, accepted inside <Parameters> for compatibility:
 /// they set the <Physics> block rather than the planner, with the same checks.
 bool applyKauthamPhysicsParameter(const PlannerParameter& p, PhysicsSettings& physics,
@@ -138,11 +149,32 @@ class ProblemReader {
     const XMLElement* home = parent.FirstChildElement("Home");
     if (!home) return {};
     xml_.allowAttributes(*home, {"X", "Y", "Z", "WX", "WY", "WZ", "TH"});
-    const Eigen::Vector3d position(xml_.number(*home, "X", 0), xml_.number(*home, "Y", 0),
-                                   xml_.number(*home, "Z", 0));
+    const Eigen::Vector3d position(homeCoordinate(*home, "X"), homeCoordinate(*home, "Y"),
+                                   homeCoordinate(*home, "Z"));
     const Eigen::Vector3d axis(xml_.number(*home, "WX", 0), xml_.number(*home, "WY", 0),
                                xml_.number(*home, "WZ", 1));
     return Pose::fromAxisAngle(position, axis, xml_.number(*home, "TH", 0));
+  }
+
+  /// A <Home> coordinate in metres. Far beyond any scene (1e308), later sums overflow or put
+  /// the robot's hand outside the workspace, and the error would point elsewhere: refuse here.
+  double homeCoordinate(const XMLElement& home, const char* attribute) const {
+    constexpr double kMaxHomeCoordinate = 1000.0;  // m
+    const double value = xml_.number(home, attribute, 0);
+    if (std::abs(value) > kMaxHomeCoordinate) {
+      std::ostringstream message;
+      message << "<Home " << attribute << "=\"" << xml_.optionalText(home, attribute).value_or("")
+              << "\"> is beyond +-" << kMaxHomeCoordinate
+              << " m: positions are in metres, in the world frame; place the " << parentName(home)
+              << " in the scene";
+      xml_.fail(home, message.str());
+    }
+    return value;
+  }
+
+  static std::string parentName(const XMLElement& home) {
+    const XMLElement* parent = home.Parent() ? home.Parent()->ToElement() : nullptr;
+    return parent ? "<" + std::string(parent->Name()) + ">" : "model";
   }
 
   void readModel(const XMLElement& e, const char* fileAttribute, ModelInstance& instance) {
@@ -152,6 +184,8 @@ class ProblemReader {
     instance.urdf = findModel(e, relative);
     instance.model = loadModel(instance.urdf, xml_.number(e, "scale", 1.0), instance.where);
     instance.home = readHome(e);
+    const XMLElement* home = e.FirstChildElement("Home");
+    instance.homeWhere = xml_.at(home ? *home : e);
     instance.name = xml_.optionalText(e, "name").value_or(instance.model.name);
     if (const XMLElement* rename = e.FirstChildElement("KauthamName"))
       instance.name = xml_.requiredText(*rename, "name");
@@ -927,13 +961,25 @@ class ProblemReader {
         throw InputError(object.where,
                          "object '" + object.name + "' has movable joints; objects must be rigid");
       if (object.role == ObjectRole::Fixed) continue;
-      double mass = 0.0;
-      for (const Link& link : object.model.links) mass += link.inertial.mass;
-      if (!(mass > 0.0))
-        throw InputError(object.where, "the " + std::string(toString(object.role)) + " object '" +
-                                           object.name +
-                                           "' has no mass: give its URDF links an <inertial>");
+      requireMass(object);
     }
+  }
+
+  /// A movable or target object is a free body: it needs mass. A link whose <mass> is written
+  /// as zero is the line to fix; without any <inertial>, the links need one.
+  static void requireMass(const ObjectInstance& object) {
+    double mass = 0.0;
+    for (const Link& link : object.model.links) mass += link.inertial.mass;
+    if (mass > 0.0) return;
+    const std::string what =
+        "the " + std::string(toString(object.role)) + " object '" + object.name + "' has no mass";
+    for (const Link& link : object.model.links)
+      if (link.inertial.massLine > 0)
+        throw InputError({object.urdf, link.inertial.massLine},
+                         "link '" + link.name + "' has a zero <mass>, so " + what +
+                             ": give the link its real, positive mass (kg)\n  (model loaded at " +
+                             object.where.str() + ")");
+    throw InputError(object.where, what + ": give its URDF links an <inertial>");
   }
 
   void checkSupport() {
@@ -980,13 +1026,46 @@ class ProblemReader {
     return box;
   }
 
+  /// A goal relative to an object that stands farther from the workspace than the goal's
+  /// offset is long lies outside it whatever the offset's direction: the object's <Home> is
+  /// what to fix, not the goal. (A target just outside, such as a glass above the workspace's
+  /// slab, is normal: its offset brings the goal in.)
+  void requireObjectNearWorkspace(const GoalRegion& goal) const {
+    if (goal.relativeTo.empty()) return;
+    const std::string& name = goal.relativeTo;
+    const ObjectInstance& object = problem_.objects[*problem_.findObject(name)];
+    const Eigen::Vector3d p = object.home.position;
+    const double distance = problem_.workspace.exteriorDistance(p);
+    if (distance <= goal.offset.norm()) return;
+    const auto mm = [](double metres) { return std::round(metres * 1000.0) / 1000.0; };
+    const Eigen::Vector3d lo = problem_.workspace.min();
+    const Eigen::Vector3d hi = problem_.workspace.max();
+    std::ostringstream message;
+    message << "object '" << name << "' stands at (" << p.x() << ", " << p.y() << ", " << p.z()
+            << "), " << mm(distance) << " m from the <Workspace> (" << lo.x() << " " << lo.y()
+            << " " << lo.z() << " to " << hi.x() << " " << hi.y() << " " << hi.z()
+            << "), farther than the goal's offset (" << mm(goal.offset.norm())
+            << " m) reaches, so the goal relative to it lies outside the workspace; move the "
+               "object's <Home> where the robot can reach it, or widen the <Workspace>";
+    throw InputError(object.homeWhere, message.str());
+  }
+
   void checkGoal(const GoalRegion& goal) const {
-    if (!problem_.robot.model.findLink(goal.link))
-      throw InputError(goal.where,
-                       "the robot '" + problem_.robot.name + "' has no link '" + goal.link + "'");
-    if (!goal.relativeTo.empty() && !problem_.findObject(goal.relativeTo))
-      throw InputError(goal.where, "relativeTo names no object: '" + goal.relativeTo + "'");
+    if (!problem_.robot.model.findLink(goal.link)) {
+      std::vector<std::string> links;
+      for (const Link& link : problem_.robot.model.links) links.push_back(link.name);
+      throw InputError(goal.where, "the robot '" + problem_.robot.name + "' has no link '" +
+                                       goal.link + "'; its links are " + someNames(links));
+    }
+    if (!goal.relativeTo.empty() && !problem_.findObject(goal.relativeTo)) {
+      std::vector<std::string> objects;
+      for (const ObjectInstance& object : problem_.objects) objects.push_back(object.name);
+      throw InputError(goal.where, "relativeTo names no object: '" + goal.relativeTo +
+                                       "'; the objects are " + someNames(objects));
+    }
     const Eigen::Vector3d position = problem_.goalPosition(goal);
+    if (!problem_.workspace.contains(position) && !goal.isConfiguration())
+      requireObjectNearWorkspace(goal);
     if (!problem_.workspace.contains(position))
       throw InputError(goal.where, "the goal (" + std::to_string(position.x()) + ", " +
                                        std::to_string(position.y()) + ", " +

@@ -19,6 +19,10 @@ namespace kautham::core {
 
 namespace {
 
+/// Largest |lower| or |upper| of a revolute or prismatic joint (rad or m, as the URDF writes
+/// it): far beyond any real joint, still small enough for the physics to step.
+constexpr double kMaxJointLimit = 1000.0;
+
 Eigen::Isometry3d toIsometry(const urdf::Pose& pose, double scale) {
   Eigen::Isometry3d transform = Eigen::Isometry3d::Identity();
   const urdf::Rotation& r = pose.rotation;
@@ -160,6 +164,9 @@ class UrdfConverter {
       const urdf::Inertial& in = *source.inertial;
       if (!(in.mass >= 0.0)) fail("link", source.name, "link '" + source.name + "': negative mass");
       link.inertial.mass = in.mass;
+      const auto* inertial = element.FirstChildElement("inertial");
+      const auto* mass = inertial ? inertial->FirstChildElement("mass") : nullptr;
+      link.inertial.massLine = (mass ? mass : &element)->GetLineNum();
       link.inertial.origin = toIsometry(in.origin, scale_);
       link.inertial.inertia << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz,
           in.izz;
@@ -415,11 +422,12 @@ class UrdfConverter {
       joint.upper = M_PI;
       return;
     }
-    if (!source.limits || !(source.limits->velocity > 0.0) || !(source.limits->effort > 0.0))
+    if (!source.limits || !(source.limits->velocity > 0.0) || !(source.limits->effort > 0.0) ||
+        !std::isfinite(source.limits->velocity) || !std::isfinite(source.limits->effort))
       fail("joint", source.name,
            "joint '" + source.name +
-               "' needs <limit velocity=\"..\" effort=\"..\"/> with positive values: the "
-               "planner's controls are joint velocities driven by motors of that effort");
+               "' needs <limit velocity=\"..\" effort=\"..\"/> with positive finite values: "
+               "the planner's controls are joint velocities driven by motors of that effort");
     const double lengthScale = joint.type == JointType::Prismatic ? scale_ : 1.0;
     joint.maxVelocity = source.limits->velocity * lengthScale;
     joint.maxEffort = source.limits->effort;
@@ -428,10 +436,26 @@ class UrdfConverter {
       joint.upper = M_PI;
       return;
     }
+    requireSaneRange(source);
     joint.lower = source.limits->lower * lengthScale;
     joint.upper = source.limits->upper * lengthScale;
     if (!(joint.lower < joint.upper))
       fail("joint", source.name, "joint '" + source.name + "': <limit> needs lower < upper");
+  }
+
+  /// A range such as [-1e300, 1e300] maps the planner's [0, 1] joint values onto numbers no
+  /// motor can reach: every propagated state diverges. No real joint comes near the bound.
+  void requireSaneRange(const urdf::Joint& source) const {
+    const double lower = source.limits->lower;
+    const double upper = source.limits->upper;
+    if (std::abs(lower) <= kMaxJointLimit && std::abs(upper) <= kMaxJointLimit) return;
+    std::ostringstream message;
+    message << "joint '" << source.name << "': <limit lower=\"" << lower << "\" upper=\"" << upper
+            << "\"> is beyond +-" << kMaxJointLimit << " (rad or m); give the joint's real range"
+            << (source.type == urdf::Joint::REVOLUTE
+                    ? ", or make it type=\"continuous\" if it turns without end"
+                    : "");
+    fail("joint", source.name, message.str());
   }
 
   const XmlReader& xml_;

@@ -9,6 +9,53 @@
 
 namespace kautham::core {
 
+namespace {
+
+/// The element tinyxml2 names in its error text ("... XMLElement name=Robot"), if any.
+std::string elementNamed(const tinyxml2::XMLDocument& document) {
+  const char* text = document.ErrorStr();
+  const char* name = text ? std::strstr(text, "name=") : nullptr;
+  return name ? std::string(name + 5) : std::string();
+}
+
+/// tinyxml2's error, in the words of someone who wrote the file rather than of the parser.
+std::string syntaxError(const tinyxml2::XMLDocument& document) {
+  const std::string name = elementNamed(document);
+  const std::string in = name.empty() ? "" : " in <" + name + ">";
+  switch (document.ErrorID()) {
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      return "<" + name + "> is not closed: the next end tag belongs to another element; add </" +
+             name + "> where it ends (or write <" + name + " .../> if it holds nothing)";
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      return "a broken attribute" + in +
+             ": write each attribute once, as name=\"value\" with the quotes";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      return "a broken tag" + in +
+             ": a '<' must start a tag <name ...> closed by '>' (write "
+             "&lt; for a '<' in text)";
+    case tinyxml2::XML_ERROR_PARSING_TEXT:
+      return "text where a tag was expected (all content goes inside the root element)";
+    case tinyxml2::XML_ERROR_PARSING_COMMENT:
+      return "a comment <!-- is not closed with -->";
+    case tinyxml2::XML_ERROR_PARSING_CDATA:
+      return "a <![CDATA[ section is not closed with ]]>";
+    case tinyxml2::XML_ERROR_PARSING_DECLARATION:
+      return "the declaration <?xml ...?> is not closed with ?>";
+    case tinyxml2::XML_ERROR_PARSING_UNKNOWN:
+      return "a <!...> construct is not closed with '>'";
+    case tinyxml2::XML_ERROR_FILE_NOT_FOUND:
+    case tinyxml2::XML_ERROR_FILE_COULD_NOT_BE_OPENED:
+    case tinyxml2::XML_ERROR_FILE_READ_ERROR:
+      return "the file cannot be read (check its permissions)";
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
+      return "the elements are nested too deeply";
+    default:
+      return "the file is not well-formed XML";
+  }
+}
+
+}  // namespace
+
 XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(file_, ignored))
@@ -16,11 +63,8 @@ XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
   const tinyxml2::XMLError status = document_.LoadFile(file_.c_str());
   if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT)
     throw InputError({file_, 1}, "the file is empty: expected an XML document");
-  if (status != tinyxml2::XML_SUCCESS) {
-    const char* detail = document_.ErrorStr();
-    throw InputError({file_, document_.ErrorLineNum()},
-                     std::string("malformed XML: ") + (detail ? detail : "unknown error"));
-  }
+  if (status != tinyxml2::XML_SUCCESS)
+    throw InputError({file_, document_.ErrorLineNum()}, "malformed XML: " + syntaxError(document_));
 }
 
 const tinyxml2::XMLElement& XmlReader::root(const char* expectedName) const {
@@ -164,6 +208,10 @@ std::vector<double> XmlReader::parseNumbers(const tinyxml2::XMLElement& element,
     const double value = std::strtod(word.c_str(), &end);
     if (end == word.c_str() || *end != '\0')
       fail(element, what + ": expected a number, got '" + word + "'");
+    if (beyondDouble(word))
+      fail(element, what + ": " + word +
+                        " is out of range: beyond the largest number a double holds (about "
+                        "1.8e308)");
     if (!std::isfinite(value))
       fail(element, what + ": expected a finite number, got '" + word + "'");
     values.push_back(value);

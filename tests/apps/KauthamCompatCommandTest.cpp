@@ -110,6 +110,21 @@ TEST(CheckWarnings, RobotLinksWithoutInertialAreNamed) {
       << run.output;
 }
 
+TEST(CheckWarnings, ARobotLinkWithZeroMassIsNamedWithItsLineNotAsWithoutInertial) {
+  const CommandRun run = kautham("check tests/data/kautham_compat/zero_mass_arm.xml");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("zero_mass_arm.urdf:11: robot link 'finger' has a zero <mass> (its "
+                            "body gets 0.1 kg, which sets how hard it pushes); give it its real, "
+                            "positive mass (kg)"),
+            std::string::npos)
+      << run.output;
+  // The link without <inertial> is still listed as such, and only it.
+  EXPECT_NE(run.output.find("robot links without <inertial> (their bodies get 0.1 kg, which sets "
+                            "how hard they push): paddle\n"),
+            std::string::npos)
+      << run.output;
+}
+
 using SelfOverlapTest = test::TemporaryFolderTest;
 
 /// A two-joint arm whose lower link hangs down through its base (its end 12 cm below the top),

@@ -121,6 +121,23 @@ TEST(ParameterSet, RealRejectsTextNanAndInfinity) {
   EXPECT_DOUBLE_EQ(set.real("goal_bias"), 0.05);
 }
 
+TEST(ParameterSet, ANumberBeyondADoubleIsOutOfRangeNotNotANumber) {
+  ParameterSet set(someSpecs());
+  for (const std::string text : {"1e400", "-1e400", "+2e308"}) {
+    SCOPED_TRACE(text);
+    expectInvalidArgument([&] { set.set("Goal Bias", text); },
+                          {"parameter 'goal_bias' is out of range: " + text +
+                               " is beyond the largest number a double holds",
+                           "it must be in [0, 1]"});
+    expectInvalidArgument([&] { set.set("max_steps", text); }, {"out of range", "[1, 1000]"});
+  }
+  EXPECT_FALSE(beyondDouble("1e300"));
+  EXPECT_FALSE(beyondDouble("1e-400"));  // underflows to zero: a number, and a small one
+  EXPECT_FALSE(beyondDouble("inf"));
+  EXPECT_FALSE(beyondDouble("1e400x"));
+  EXPECT_DOUBLE_EQ(set.real("goal_bias"), 0.05);
+}
+
 TEST(ParameterSet, RangeIsChecked) {
   ParameterSet set(someSpecs());
   expectInvalidArgument([&] { set.set("goal_bias", "1.5"); }, {"goal_bias", "[0, 1]", "1.5"});

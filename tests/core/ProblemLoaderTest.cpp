@@ -479,7 +479,12 @@ struct MalformedCase {
 std::ostream& operator<<(std::ostream& out, const MalformedCase& c) { return out << c.name; }
 
 const MalformedCase kMalformedCases[] = {
-    {"xml_unclosed_tag", nullptr, 4, "malformed XML"},
+    {"xml_unclosed_tag", nullptr, 4,
+     "malformed XML: <Robot> is not closed: the next end tag belongs to another element; add "
+     "</Robot> where it ends (or write <Robot .../> if it holds nothing)"},
+    {"xml_unquoted_attribute", nullptr, 5,
+     "malformed XML: a broken attribute in <Home>: write each attribute once, as name=\"value\" "
+     "with the quotes"},
     {"empty_file", nullptr, 1, "the file is empty"},
     {"wrong_root", nullptr, 3, "expected the root element <Problem>, found <Scene>"},
     {"unknown_element", nullptr, 11, "unexpected element <Obstacles>"},
@@ -487,6 +492,17 @@ const MalformedCase kMalformedCases[] = {
     {"query_unknown_element", nullptr, 24, "unexpected <Inti> inside <Query>"},
     {"unknown_attribute", nullptr, 16, "no attribute 'maxDisplacment'; allowed:"},
     {"home_nan", nullptr, 13, "expected a finite number, got 'nan'"},
+    {"home_far_target", nullptr, 13,
+     "<Home X=\"1e308\"> is beyond +-1000 m: positions are in metres, in the world frame; place "
+     "the <Obstacle> in the scene"},
+    {"home_far_robot", nullptr, 5, "<Home Y=\"-1e300\"> is beyond +-1000 m"},
+    {"home_beyond_double", nullptr, 9,
+     "attribute Z: 1e400 is out of range: beyond the largest number a double holds"},
+    {"target_outside_workspace", nullptr, 13,
+     "object 'glass' stands at (5, 0.22, 0.825), 4.45 m from the <Workspace> (-0.55 -0.4 0.76 to "
+     "0.55 0.38 0.79), farther than the goal's offset (0.103 m) reaches, so the goal relative "
+     "to it lies outside the workspace; move the object's <Home> where the robot can reach it, "
+     "or widen the <Workspace>"},
     {"home_twice", nullptr, 14, "<Home> appears twice inside <Obstacle> (first on line 13)"},
     {"physics_not_a_number", nullptr, 15, "friction: expected a number, got 'high'"},
     {"physics_out_of_range", nullptr, 15, "maxContacts must be in [1, 64]"},
@@ -498,10 +514,18 @@ const MalformedCase kMalformedCases[] = {
      "'Max Contacts' must be one number in [1, 64]"},
     {"unknown_role", nullptr, 11, "unknown role 'goal'; expected fixed, movable or target"},
     {"missing_model", nullptr, 7, "model file 'objects/no_such_table.urdf' not found"},
-    {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML"},
+    {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML: <collision> is not closed"},
     {"urdf_joint_loop", "joint_loop.urdf", 43,
      "joint 'y': the links carriage_x -> carriage_y -> gripper -> carriage_x form a loop, not "
      "connected to the root link 'base'"},
+    {"urdf_absurd_limits", "absurd_limits.urdf", 52,
+     "joint 'yaw': <limit lower=\"-1e+300\" upper=\"1e+300\"> is beyond +-1000 (rad or m); give "
+     "the joint's real range, or make it type=\"continuous\""},
+    {"urdf_negative_effort", "negative_effort.urdf", 46,
+     "joint 'y' needs <limit velocity=\"..\" effort=\"..\"/> with positive finite values"},
+    {"target_zero_mass", "zero_mass_glass.urdf", 6,
+     "link 'glass' has a zero <mass>, so the target object 'glass' has no mass: give the link its "
+     "real, positive mass (kg)"},
     {"urdf_mesh", "mesh.urdf", 6, "link 'top': mesh 'table.stl': file not found (looked for"},
     {"mesh_not_a_mesh", "mesh_not_a_mesh.urdf", 6,
      "mesh 'meshes/not_a_mesh.stl': not a readable mesh"},
@@ -513,8 +537,14 @@ const MalformedCase kMalformedCases[] = {
      "mesh 'package://kautham/meshes/table.stl': package 'kautham' not found (give "
      "--package-path kautham=DIR"},
     {"fixed_with_joint", nullptr, 11, "object 'cabinet' has movable joints"},
-    {"goal_unknown_link", nullptr, 25, "has no link 'hand'"},
-    {"goal_unknown_object", nullptr, 25, "relativeTo names no object: 'cup'"},
+    {"goal_unknown_link", nullptr, 25,
+     "the robot 'pusher' has no link 'hand'; its links are base, carriage_x, carriage_y, gripper"},
+    {"goal_unknown_object", nullptr, 25,
+     "relativeTo names no object: 'cup'; the objects are table, glass"},
+    {"goal_unknown_link_of_many", nullptr, 47,
+     "the robot 'kuka' has no link 'hand'; its links are kuka_base, kuka_link_1, kuka_link_2, "
+     "kuka_link_3, kuka_link_4, kuka_link_5, kuka_link_6, kuka_link_7, kuka_flange, kuka_palm "
+     "and 3 more"},
     {"goal_outside_workspace", nullptr, 25, "lies outside the <Workspace>"},
     {"duplicate_names", nullptr, 19, "the name 'can' is used twice"},
     {"no_target", nullptr, 3, "needs exactly one <Obstacle role=\"target\">, found none"},
@@ -618,6 +648,19 @@ TEST(MalformedProblems, ControlSetErrorsAlsoNameTheProblemLineThatLoadedTheSet) 
                            malformedFile("cntr_unknown_dof.xml").string() + ":7)"),
               std::string::npos)
         << message;
+  }
+}
+
+TEST(MalformedProblems, MalformedXmlIsSaidInPlainWordsNotInTinyxml2s) {
+  for (const char* name : {"xml_unclosed_tag.xml", "xml_unquoted_attribute.xml"}) {
+    try {
+      loadProblem(malformedFile(name), {repoFile("models")});
+      FAIL() << name << " loaded";
+    } catch (const InputError& error) {
+      const std::string message = error.what();
+      for (const char* raw : {"XML_ERROR", "ErrorID", "XMLElement name="})
+        EXPECT_EQ(message.find(raw), std::string::npos) << message;
+    }
   }
 }
 

@@ -245,6 +245,20 @@ TEST_F(RequestTest, BadValueInTheFileNamesItsLine) {
   }
 }
 
+TEST_F(RequestTest, AValueBeyondADoubleInTheFileIsOutOfRangeAtItsLine) {
+  problem.planner.parameters.push_back({"_Max Planning Time", "1e400", {problem.file, 42}});
+  try {
+    makeRequest(problem, std::nullopt, {}, 1);
+    FAIL() << "accepted a time limit of 1e400";
+  } catch (const core::InputError& e) {
+    EXPECT_EQ(e.where().line, 42);
+    EXPECT_NE(std::string(e.what()).find("parameter 'time_limit' is out of range: 1e400 is "
+                                         "beyond the largest number a double holds"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(RequestTest, UnknownPlannerInTheFileNamesItsLine) {
   problem.planner.name = "NoSuchPlanner";
   try {

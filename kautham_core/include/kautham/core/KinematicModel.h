@@ -16,6 +16,9 @@ struct Inertial {
   double mass = 0.0;
   Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  ///< centre of mass frame in the link
   Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         ///< about the centre of mass frame
+  /// Line of the URDF's <mass> element; 0 when the link has no <inertial>. It tells a mass the
+  /// file gives as zero (to be fixed there) from one it does not give at all.
+  int massLine = 0;
 };
 
 struct Link {

@@ -18,6 +18,9 @@ std::optional<bool> flagWord(const std::string& text);
 /// A number as users write it: the whole text one finite number (none otherwise). Planner
 /// parameters and --physics values both read numbers so.
 std::optional<double> numberWord(const std::string& text);
+/// Whether `text` is a decimal number too large for a double (1e400): it is a number, just out
+/// of range, and a message should say so rather than "expects a number".
+bool beyondDouble(const std::string& text);
 
 /// A typed, documented planner parameter: what `kautham planners` lists. Declare one with the
 /// named builders of `Parameter` rather than by position.

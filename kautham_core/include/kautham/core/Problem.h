@@ -45,6 +45,7 @@ struct ModelInstance {
   KinematicModel model;
   Pose home;
   SourceLocation where;
+  SourceLocation homeWhere;  ///< its <Home> element (`where` when it has none), for messages
 };
 
 /// Kautham's <Limits name="X|Y|Z" min max>: the robot's base slides along an axis of its
