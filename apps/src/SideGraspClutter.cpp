@@ -388,6 +388,13 @@ void checkOptions(const ClutterOptions& options) {
 
 int requiredBlockers(int objects) { return objects >= kBlockersFrom ? (objects + 4) / 5 : 0; }
 
+int mostObjectsForBlockers(int blockers) {
+  int most = 0;
+  for (int n = 0; n <= kMaxClutterObjects; ++n)
+    if (requiredBlockers(n) <= blockers) most = n;
+  return most;
+}
+
 std::vector<SceneObject> placeSideGraspClutter(const ClutterOptions& options) {
   checkOptions(options);
   const SideSetup& setup = findSideSetup(options.robot);
@@ -404,8 +411,10 @@ std::vector<SceneObject> placeSideGraspClutter(const ClutterOptions& options) {
     if (i < blockers)
       throw std::invalid_argument(fmt::format(
           "only {} of the {} blockers that {} objects need fit on the {}'s approach (at least "
-          "{:g} m apart); use a smaller --gap, or fewer than {} objects",
-          i, blockers, options.objects, options.robot, options.gap, kBlockersFrom));
+          "{:g} m apart); use a smaller --gap, or at most {} objects ({})",
+          i, blockers, options.objects, options.robot, options.gap, mostObjectsForBlockers(i),
+          i == 0 ? fmt::format("fewer than {} need no blocker", kBlockersFrom)
+                 : fmt::format("they need at most {} blocker{}", i, i == 1 ? "" : "s")));
     throw std::invalid_argument(fmt::format(
         "only {} of {} objects fit in the zone with the {} (at least {:g} m apart); ask for at "
         "most {} objects, or a smaller --gap",

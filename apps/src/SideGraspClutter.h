@@ -24,6 +24,9 @@ struct SceneObject {
 
 /// How many objects must block the approach in a scene of `objects` objects.
 int requiredBlockers(int objects);
+/// The most objects whose requiredBlockers() is at most `blockers`: what to ask for when only
+/// that many blockers fit.
+int mostObjectsForBlockers(int blockers);
 
 /// Places the objects of a side-grasp scene. Throws std::invalid_argument for options out of
 /// range and when not all objects fit (the message says how many did).

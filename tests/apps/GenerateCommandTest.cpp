@@ -201,6 +201,31 @@ TEST_F(GenerateCommandTest, TooManyObjectsExitsTwoSayingHowManyFit) {
   EXPECT_FALSE(fs::exists(file));
 }
 
+TEST_F(GenerateCommandTest, TooFewBlockersSayHowManyObjectsNeedNoMore) {
+  // 40 objects need 8 blockers on the YuMi's approach; only some fit at this gap.
+  const fs::path file = folder / "crowded.xml";
+  const CommandRun run = generate("--robot yumi --objects 40 -o " + file.string());
+  ASSERT_EQ(run.exitCode, 2) << run.output;
+  const std::regex message(
+      "only ([0-9]+) of the 8 blockers that 40 objects need fit on the yumi's approach \\(at "
+      "least 0.01 m apart\\); use a smaller --gap, or at most ([0-9]+) objects \\(they need at "
+      "most ([0-9]+) blockers?\\)");
+  std::smatch match;
+  ASSERT_TRUE(std::regex_search(run.output, match, message)) << run.output;
+  const int fitted = std::stoi(match[1]);
+  const int most = std::stoi(match[2]);
+  EXPECT_EQ(std::stoi(match[3]), fitted);
+  EXPECT_GT(fitted, 1);  // so the hint is not the "fewer than 10" of a scene without blockers
+  EXPECT_EQ(most, 5 * fitted);  // ceil(N / 5) blockers from 10 objects on
+  // The hint holds: that many objects get their blockers placed (and one more would not).
+  const CommandRun fewer = generate("--robot yumi --objects " + std::to_string(most) + " -o " +
+                                    (folder / "fewer.xml").string());
+  EXPECT_EQ(fewer.output.find("blockers that"), std::string::npos) << fewer.output;
+  const CommandRun oneMore = generate("--robot yumi --objects " + std::to_string(most + 1) +
+                                      " -o " + (folder / "more.xml").string());
+  EXPECT_NE(oneMore.output.find("blockers that"), std::string::npos) << oneMore.output;
+}
+
 TEST_F(GenerateCommandTest, ExistingFileIsKeptWithoutForce) {
   const fs::path file = folder / "scene.xml";
   test::writeFile(file, "mine");
