@@ -4,6 +4,7 @@
 // jobs, resume, Ctrl-C), BenchRunResult and RunProperties (the result file), OmplBenchmarkLog.
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -16,6 +17,7 @@
 #include "BenchSpec.h"
 #include "Commands.h"
 #include "OmplBenchmarkLog.h"
+#include "SeedOption.h"
 #include "kautham/core/InputError.h"
 #include "kautham/planners/PluginLoader.h"
 
@@ -235,9 +237,12 @@ void addSpecOptions(CLI::App& command, BenchOptions& options) {
   command.add_option("--set", s.sets, "PARAM=VALUE for every configuration (repeatable)")
       ->allow_extra_args(false);
   command.add_option("--runs", s.runs, "runs per problem and configuration (default 10)");
-  command.add_option("--seed", s.seed, "run r plans and validates with seed SEED + r (default 1)");
+  command.add_option("--seed", s.seed, "run r plans and validates with seed SEED + r (default 1)")
+      ->check(seedRange(std::numeric_limits<std::uint32_t>::max()));
   command.add_option("--time", s.time, "planning time limit in seconds (default: the problem's)");
-  command.add_option("--threads", s.threads, "processes for p-KPIECE's particles in each run");
+  command.add_option("--threads", s.threads,
+                     "worker processes for p-KPIECE's particles and whole-plan verification in "
+                     "each run; the other planners run in one thread and ignore it");
   command.add_option("--validate", s.validate,
                      "execute each solved plan this many times under uncertainty (default 0)");
   command.add_option("--model-dir", s.modelDirs, "extra folder to search for models")

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 #include "ClutterGenerator.h"
 #include "Commands.h"
 #include "OutputFile.h"
+#include "SeedOption.h"
 #include "SideGraspClutter.h"
 
 namespace kautham::apps {
@@ -76,7 +78,8 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
       ->required()
       ->check(CLI::Range(0, kMaxClutterObjects));
   clutter->add_option("-s,--seed", options->clutter.seed, "random seed: same seed, same scene")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(seedRange(std::numeric_limits<std::uint64_t>::max()));
   clutter->add_option("-t,--target", options->clutter.target, "the object to grasp")
       ->capture_default_str()
       ->check(CLI::IsMember({"glass"}));

@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "ParameterOverrides.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
+#include "SeedOption.h"
 #include "StartCheck.h"
 #include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
@@ -223,9 +225,12 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   command->add_option("--time", options->time, "planning time limit in seconds")
       ->check(CLI::Range(0.01, 86400.0));
   command->add_option("--threads", options->threads,
-                      "processes for p-KPIECE's particles, same as --set threads=N (the plan "
-                      "does not depend on it)");
-  command->add_option("--seed", options->seed, "random seed (0: pick one)")->capture_default_str();
+                      "worker processes for p-KPIECE's particles and its whole-plan verification, "
+                      "same as --set threads=N (the plan does not depend on it); the other "
+                      "planners run in one thread and ignore it");
+  command->add_option("--seed", options->seed, "random seed (0: pick one)")
+      ->capture_default_str()
+      ->check(seedRange(std::numeric_limits<std::uint32_t>::max()));
   command
       ->add_option("--set", options->sets,
                    "set a planner parameter, NAME=VALUE (repeatable; see `kautham planners`)")

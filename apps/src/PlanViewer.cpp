@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "PlanControlCheck.h"
 #include "PlanFile.h"
 
 namespace kautham::apps {
@@ -110,6 +111,20 @@ void checkShape(const nlohmann::json& shape, const char* array, std::size_t inde
     fail(fmt::format("has \"body\" {}, not null nor an index below {}", body.dump(), bodies));
 }
 
+/// The page marks each control's frames by its "steps": the same controls validate accepts.
+/// A start scene (`kautham view problem.xml`) has none.
+void checkControlsForView(const nlohmann::json& plan, const std::string& source) {
+  if (!plan.contains("controls")) return;
+  const auto& controls = plan["controls"];
+  if (!controls.is_array()) throw ViewError(source + ": the plan's \"controls\" is not an array");
+  const auto step = plan.value("propagation_step_size", nlohmann::json());
+  if (!controls.empty() && !(step.is_number() && step.get<double>() > 0.0))
+    throw ViewError(source + ": the plan needs a positive \"propagation_step_size\"");
+  for (std::size_t i = 0; i < controls.size(); ++i)
+    if (const std::optional<std::string> error = planControlError(controls[i], step.get<double>()))
+      throw ViewError(fmt::format("{}: controls[{}]: {}", source, i, *error));
+}
+
 }  // namespace
 
 fs::path findThreeDir(const std::string& overrideDir) {
@@ -158,6 +173,7 @@ void checkPlanForView(const nlohmann::json& plan, const std::string& source) {
     for (std::size_t i = 0; i < visuals.size(); ++i)
       checkShape(visuals[i], "visuals", i, bodies.size(), source);
   }
+  checkControlsForView(plan, source);
   const auto& frames = plan["frames"];
   if (frames.empty()) throw ViewError(source + ": the plan has no frames to show");
   for (std::size_t i = 0; i < frames.size(); ++i) {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -19,7 +20,9 @@
 #include "JsonFileText.h"
 #include "OutputFile.h"
 #include "PackagePathOption.h"
+#include "PlanControlCheck.h"
 #include "PlanFile.h"
+#include "SeedOption.h"
 #include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/core/Random.h"
@@ -123,20 +126,11 @@ class PlanReader {
         throw core::InputError({source_.file(), controlLine(i)},
                                fmt::format("controls[{}]: {}", i, what));
       };
-      if (!c.is_object()) bad("expected an object with \"values\" and \"steps\"");
-      if (!c.contains("values") || !c["values"].is_array() || c["values"].empty())
-        bad("needs a \"values\" array of numbers (one per control)");
+      if (const std::optional<std::string> error = planControlError(c, result.propagationStepSize))
+        bad(*error);
       physics::ControlStep control;
-      for (const json& v : c["values"]) {
-        if (!v.is_number() || !std::isfinite(v.get<double>()))
-          bad("\"values\" holds something that is not a finite number: " + v.dump());
-        control.values.push_back(v.get<double>());
-      }
-      const json steps = c.value("steps", json());
-      if (!steps.is_number_unsigned() || steps.get<std::uint64_t>() == 0 ||
-          steps.get<std::uint64_t>() > 1000000)
-        bad("\"steps\" must be a whole number of propagation steps in [1, 1000000]");
-      control.steps = static_cast<unsigned>(steps.get<std::uint64_t>());
+      for (const json& v : c["values"]) control.values.push_back(v.get<double>());
+      control.steps = static_cast<unsigned>(c["steps"].get<std::uint64_t>());
       readGripperAction(c, control, bad);
       result.controls.push_back(std::move(control));
     }
@@ -556,7 +550,8 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
       ->required()
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   command->add_option("--seed", options->seed, "random seed; run i draws from its own stream")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(seedRange(std::numeric_limits<std::uint64_t>::max()));
   command->add_option("--json", options->json, "write the numbers to this JSON file");
   command
       ->add_option("--physics", options->physics,

@@ -36,8 +36,8 @@ std::vector<core::ParameterSpec> commonParameters() {
       Parameter::integer("threads")
           .byDefault(1)
           .range(1, 64)
-          .describe("worker processes for p-KPIECE's particles (the plan does not depend on "
-                    "it); others ignore it")
+          .describe("worker processes for p-KPIECE's particles and whole-plan verification "
+                    "(the plan does not depend on it); the other planners run in one thread")
           .alias("Threads"),
   };
 }

@@ -142,6 +142,55 @@ TEST_F(PlanCommandTest, UnknownParameterOrPlannerExitsTwo) {
   EXPECT_EQ(kautham("plan problems/pusher_free.xml --no-such-flag").exitCode, 2);
 }
 
+TEST_F(PlanCommandTest, ASeedOutOfRangeSaysWhatASeedMustBe) {
+  // plan and bench seed 32-bit streams; validate and generate 64-bit ones.
+  const std::string max32 = "4294967295";
+  const std::string max64 = "18446744073709551615";
+  const std::pair<std::string, std::string> cases[] = {
+      {"plan problems/pusher_free.xml --seed 4294967296", max32},
+      {"plan problems/pusher_free.xml --seed -1", max32},
+      {"plan problems/pusher_free.xml --seed 1.5", max32},
+      {"bench problems/pusher_free.xml --planner RRT --seed 4294967296 -o " +
+           (folder / "bench").string(),
+       max32},
+      {"validate problems/pusher_free.xml no_plan.json --runs 1 --seed 18446744073709551616",
+       max64},
+      {"generate clutter -r kuka -n 1 --seed 18446744073709551616 -o " +
+           (folder / "g.xml").string(),
+       max64},
+  };
+  for (const auto& [command, max] : cases) {
+    const CommandRun run = kautham(command);
+    EXPECT_EQ(run.exitCode, 2) << command << "\n" << run.output;
+    EXPECT_NE(run.output.find("the seed must be an integer in [0, " + max + "], got '"),
+              std::string::npos)
+        << command << "\n"
+        << run.output;
+    EXPECT_EQ(run.output.find("Could not convert"), std::string::npos) << run.output;
+  }
+  EXPECT_FALSE(fs::exists(folder / "g.xml"));
+}
+
+TEST_F(PlanCommandTest, ASetValueBeyondADoubleSaysOutOfRange) {
+  for (const char* set : {"time_limit=1e400", "goal_bias=-1e400", "propagation_step_size=2e308"}) {
+    const CommandRun run = kautham(std::string("plan problems/pusher_free.xml --set ") + set);
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_NE(run.output.find("is out of range: "), std::string::npos) << set << "\n" << run.output;
+    EXPECT_NE(run.output.find("is beyond the largest number a double holds (about 1.8e308); it "
+                              "must be in ["),
+              std::string::npos)
+        << set << "\n"
+        << run.output;
+    EXPECT_EQ(run.output.find("expects a number"), std::string::npos) << run.output;
+  }
+  const CommandRun physics = kautham("plan problems/pusher_free.xml --physics friction=1e999");
+  EXPECT_EQ(physics.exitCode, 2) << physics.output;
+  EXPECT_NE(physics.output.find("--physics friction=1e999: out of range: 1e999 is beyond the "
+                                "largest number a double holds"),
+            std::string::npos)
+      << physics.output;
+}
+
 TEST_F(PlanCommandTest, UnsolvedWithinTheTimeLimitExitsOne) {
   const CommandRun run = kautham("plan problems/pusher_cans_5.xml --seed 1 --time 0.01");
   EXPECT_EQ(run.exitCode, 1) << run.output;
@@ -239,6 +288,18 @@ TEST_F(PlanCommandTest, HelpExplainsThePlanCommand) {
   EXPECT_EQ(run.exitCode, 0);
   for (const char* text : {"--planner", "--time", "--seed", "--set", "--output"})
     EXPECT_NE(run.output.find(text), std::string::npos) << text;
+}
+
+TEST_F(PlanCommandTest, HelpOfThreadsSaysWhichPlannersUseThem) {
+  // CLI11 wraps the help text: compare it with its line breaks and indents taken out.
+  for (const char* command : {"plan --help", "bench --help"}) {
+    std::string help;
+    for (char c : kautham(command).output)
+      if (c != '\n' && c != ' ') help += c;
+    EXPECT_NE(help.find("p-KPIECE'sparticlesand"), std::string::npos) << command << "\n" << help;
+    EXPECT_NE(help.find("whole-planverification"), std::string::npos) << command;
+    EXPECT_NE(help.find("theotherplannersruninonethreadandignoreit"), std::string::npos) << command;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <unistd.h>
 
@@ -249,6 +250,52 @@ TEST_F(ValidateCommandTest, MalformedPlanFilesExitTwoNamingFileAndLine) {
   EXPECT_EQ(size.exitCode, 2) << size.output;
   EXPECT_NE(size.output.find("controls[0] has 4 values, but the robot"), std::string::npos)
       << size.output;
+}
+
+TEST_F(ValidateCommandTest, AbsurdControlValuesOrDurationsAreRefusedNamingTheControl) {
+  const nlohmann::json original = readJson(plan());
+  ASSERT_GE(original["controls"].size(), 2u);
+  const auto rejected = [&](const std::function<void(nlohmann::json&)>& change,
+                            const std::string& phrase) {
+    nlohmann::json edited = original;
+    change(edited);
+    const fs::path file = folder / "edited.json";
+    test::writeFile(file, edited.dump(1));
+    const CommandRun run =
+        kautham("validate problems/pusher_cans_5.xml " + quoted(file) + " --runs 2");
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    // validate names the file and the control's line.
+    EXPECT_NE(run.output.find(file.string() + ":"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find(phrase), std::string::npos) << run.output;
+    const CommandRun view =
+        kautham("view " + quoted(file) + " -o " + quoted(folder / "edited.html"));
+    EXPECT_EQ(view.exitCode, 2) << view.output;
+    EXPECT_NE(view.output.find(file.string() + ": controls["), std::string::npos) << view.output;
+    EXPECT_NE(view.output.find(phrase), std::string::npos) << view.output;
+  };
+  rejected([](nlohmann::json& p) { p["controls"][1]["values"][0] = 1e300; },
+           "controls[1]: \"values\" holds 1e+300, outside [-1, 1]: a control value is a fraction "
+           "of a joint's velocity limit (or of a control-set column); write values in [-1, 1]");
+  rejected([](nlohmann::json& p) { p["controls"][1]["values"][0] = -1.5; },
+           "controls[1]: \"values\" holds -1.5, outside [-1, 1]");
+  const nlohmann::json longer = original["controls"][1]["duration"].get<double>() + 0.5;
+  const auto changeDuration = [&](nlohmann::json& p) { p["controls"][1]["duration"] = longer; };
+  rejected(changeDuration,
+           "controls[1]: \"duration\" " + longer.dump() + " disagrees with \"steps\" " +
+               original["controls"][1]["steps"].dump() + " x propagation_step_size ");
+  rejected(changeDuration, "s; the steps are what is executed: make \"duration\" ");
+  rejected([](nlohmann::json& p) { p["controls"][0]["duration"] = "long"; },
+           "controls[0]: \"duration\" \"long\" disagrees with");
+  // The bounds themselves, and a duration left out, are accepted.
+  nlohmann::json edge = original;
+  edge["controls"][0]["values"][0] = 1.0;
+  edge["controls"][1]["values"][0] = -1.0;
+  edge["controls"][1].erase("duration");
+  const fs::path file = folder / "edge.json";
+  test::writeFile(file, edge.dump(1));
+  const CommandRun run =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(file) + " --runs 1");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
 }
 
 TEST_F(ValidateCommandTest, APlanMadeInOtherPhysicsIsExecutedInThem) {
