@@ -1,8 +1,13 @@
 #include "XmlReader.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+#include <optional>
 #include <sstream>
 
 #include "kautham/core/Parameter.h"
@@ -54,6 +59,36 @@ std::string syntaxError(const tinyxml2::XMLDocument& document) {
   }
 }
 
+/// Where the file goes on after the root element's end tag with something other than white
+/// space and comments (tinyxml2 accepts a second root element, and ignores a stray end tag, so
+/// what follows would be dropped without a word): its offset in `text`, if anywhere. The root's
+/// end tag is the first outside a comment: the roots read here (<Problem>, <robot>) do not nest.
+std::optional<std::size_t> contentAfterRoot(const std::string& text, const std::string& root) {
+  const std::string endTag = "</" + root;
+  std::size_t at = 0;
+  bool closed = false;
+  while (at < text.size()) {
+    if (text.compare(at, 4, "<!--") == 0) {
+      const std::size_t close = text.find("-->", at + 4);
+      if (close == std::string::npos) return std::nullopt;  // tinyxml2 reports it
+      at = close + 3;
+    } else if (closed) {
+      if (!std::isspace(static_cast<unsigned char>(text[at]))) return at;
+      ++at;
+    } else if (text.compare(at, endTag.size(), endTag) == 0 &&
+               (at + endTag.size() == text.size() || text[at + endTag.size()] == '>' ||
+                std::isspace(static_cast<unsigned char>(text[at + endTag.size()])))) {
+      at = text.find('>', at);
+      if (at == std::string::npos) return std::nullopt;
+      ++at;
+      closed = true;
+    } else {
+      ++at;
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
@@ -73,7 +108,21 @@ const tinyxml2::XMLElement& XmlReader::root(const char* expectedName) const {
   if (std::strcmp(element->Name(), expectedName) != 0)
     fail(*element, std::string("expected the root element <") + expectedName + ">, found <" +
                        element->Name() + ">");
+  requireNothingAfterRoot(expectedName);
   return *element;
+}
+
+void XmlReader::requireNothingAfterRoot(const char* rootName) const {
+  std::ifstream in(file_, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::optional<std::size_t> after = contentAfterRoot(text, rootName);
+  if (!after) return;
+  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + *after, '\n'));
+  std::string what = text.substr(*after, 40);
+  what = what.substr(0, what.find('\n'));
+  throw InputError({file_, line}, std::string("the file goes on after </") + rootName + "> with '" +
+                                      what + "': a file holds one <" + rootName +
+                                      ">; remove what follows, or move it inside");
 }
 
 SourceLocation XmlReader::at(const tinyxml2::XMLElement& element) const {

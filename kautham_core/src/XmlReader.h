@@ -58,6 +58,10 @@ class XmlReader {
   const std::filesystem::path& file() const { return file_; }
 
  private:
+  /// Throws if the file goes on after the root element's end tag (a second root element, a
+  /// stray end tag), which tinyxml2 would accept and this reader would never read.
+  void requireNothingAfterRoot(const char* rootName) const;
+
   std::vector<double> parseNumbers(const tinyxml2::XMLElement& element, const std::string& text,
                                    const std::string& what) const;
 

@@ -485,6 +485,9 @@ const MalformedCase kMalformedCases[] = {
     {"xml_unquoted_attribute", nullptr, 5,
      "malformed XML: a broken attribute in <Home>: write each attribute once, as name=\"value\" "
      "with the quotes"},
+    {"xml_content_after_root", nullptr, 32,
+     "the file goes on after </Problem> with '<Problem name=\"second\"/>': a file holds one "
+     "<Problem>; remove what follows, or move it inside"},
     {"empty_file", nullptr, 1, "the file is empty"},
     {"wrong_root", nullptr, 3, "expected the root element <Problem>, found <Scene>"},
     {"unknown_element", nullptr, 11, "unexpected element <Obstacles>"},
@@ -515,6 +518,8 @@ const MalformedCase kMalformedCases[] = {
     {"unknown_role", nullptr, 11, "unknown role 'goal'; expected fixed, movable or target"},
     {"missing_model", nullptr, 7, "model file 'objects/no_such_table.urdf' not found"},
     {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML: <collision> is not closed"},
+    {"urdf_stray_end_tag", "stray_end_tag.urdf", 11,
+     "the file goes on after </robot> with '</robot>': a file holds one <robot>"},
     {"urdf_joint_loop", "joint_loop.urdf", 43,
      "joint 'y': the links carriage_x -> carriage_y -> gripper -> carriage_x form a loop, not "
      "connected to the root link 'base'"},
