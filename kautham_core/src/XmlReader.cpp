@@ -95,7 +95,11 @@ XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
   std::error_code ignored;
   if (!std::filesystem::is_regular_file(file_, ignored))
     throw InputError({file_, 0}, "cannot read the file: it does not exist or is not a file");
-  const tinyxml2::XMLError status = document_.LoadFile(file_.c_str());
+  // The text is kept: root() looks at what follows the root element, which tinyxml2 skips.
+  std::ifstream in(file_, std::ios::binary);
+  if (!in) throw InputError({file_, 0}, "cannot read the file (check its permissions)");
+  text_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  const tinyxml2::XMLError status = document_.Parse(text_.data(), text_.size());
   if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT)
     throw InputError({file_, 1}, "the file is empty: expected an XML document");
   if (status != tinyxml2::XML_SUCCESS)
@@ -113,8 +117,7 @@ const tinyxml2::XMLElement& XmlReader::root(const char* expectedName) const {
 }
 
 void XmlReader::requireNothingAfterRoot(const char* rootName) const {
-  std::ifstream in(file_, std::ios::binary);
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string& text = text_;
   const std::optional<std::size_t> after = contentAfterRoot(text, rootName);
   if (!after) return;
   const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + *after, '\n'));

@@ -66,6 +66,7 @@ class XmlReader {
                                    const std::string& what) const;
 
   std::filesystem::path file_;
+  std::string text_;  // the file as read, for what tinyxml2 does not report (root())
   tinyxml2::XMLDocument document_;
 };
 
