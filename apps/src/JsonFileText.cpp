@@ -31,4 +31,60 @@ int JsonFileText::keyLine(const std::string& key) const {
   return at == std::string::npos ? 0 : lineAt(at);
 }
 
+namespace {
+
+bool isJsonSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+
+/// The offset just past the string that opens at `at` (a '"'), escapes skipped.
+std::size_t pastString(const std::string& text, std::size_t at) {
+  for (++at; at < text.size(); ++at) {
+    if (text[at] == '\\')
+      ++at;
+    else if (text[at] == '"')
+      return at + 1;
+  }
+  return text.size();
+}
+
+/// The offset of element `index` of the array opening at `open` (a '['); npos when it has
+/// fewer. The text parsed as JSON, so only strings and nesting need care.
+std::size_t arrayElement(const std::string& text, std::size_t open, std::size_t index) {
+  std::size_t element = 0;
+  int depth = 0;
+  bool expectElement = true;  // after '[' or a top-level ',': the next value starts one
+  for (std::size_t at = open; at < text.size();) {
+    const char c = text[at];
+    if (depth == 1 && expectElement && !isJsonSpace(c) && c != ']') {
+      if (element == index) return at;
+      expectElement = false;
+    }
+    if (c == '"') {
+      at = pastString(text, at);
+      continue;
+    }
+    if (c == '[' || c == '{') ++depth;
+    if (c == ']' || c == '}') {
+      if (--depth == 0) return std::string::npos;
+    }
+    if (c == ',' && depth == 1) {
+      ++element;
+      expectElement = true;
+    }
+    ++at;
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
+int JsonFileText::elementLine(const std::string& key, std::size_t index) const {
+  const std::size_t at = text_.find("\"" + key + "\"");
+  if (at == std::string::npos) return 0;
+  std::size_t open = at + key.size() + 2;
+  while (open < text_.size() && (isJsonSpace(text_[open]) || text_[open] == ':')) ++open;
+  if (open >= text_.size() || text_[open] != '[') return lineAt(at);
+  const std::size_t element = arrayElement(text_, open, index);
+  return lineAt(element == std::string::npos ? at : element);
+}
+
 }  // namespace kautham::apps

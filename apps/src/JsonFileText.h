@@ -21,6 +21,10 @@ class JsonFileText {
   int lineAt(std::size_t offset) const;
   /// Line of the first "key" in the text; 0 when it is not there.
   int keyLine(const std::string& key) const;
+  /// Line of element `index` of the array that the first "key" holds: where an error about
+  /// `key[index]` points. The key's line when the array has fewer elements or `key` holds no
+  /// array; 0 when `key` is not there.
+  int elementLine(const std::string& key, std::size_t index) const;
 
   const std::string& text() const { return text_; }
   const std::filesystem::path& file() const { return file_; }

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "JsonFileText.h"
 #include "PlanControlCheck.h"
 #include "PlanFile.h"
 
@@ -50,6 +51,32 @@ std::string scriptSafe(std::string script) {
   return script;
 }
 
+/// Names the plan in messages and, when its file's text is at hand, the line of what a message
+/// is about ("plan.json:64: frames[3] has no time").
+class PlanSource {
+ public:
+  explicit PlanSource(std::string name) : name_(std::move(name)) {}
+  explicit PlanSource(const JsonFileText& text) : name_(text.file().string()), text_(&text) {}
+
+  /// An error at `line` (0: about the plan as a whole).
+  [[noreturn]] void failAt(int line, const std::string& what) const {
+    throw ViewError(line > 0 ? fmt::format("{}:{}: {}", name_, line, what) : name_ + ": " + what);
+  }
+  [[noreturn]] void fail(const std::string& what) const { failAt(0, what); }
+  /// An error about `array`[`index`], named so in the message.
+  [[noreturn]] void failAtElement(const std::string& array, std::size_t index,
+                                  const std::string& what) const {
+    failAt(text_ ? text_->elementLine(array, index) : 0,
+           fmt::format("{}[{}]{}{}", array, index, what.rfind(':', 0) == 0 ? "" : " ", what));
+  }
+  /// The line of a key that occurs once in a plan file (0 without the text or the key).
+  int keyLine(const std::string& key) const { return text_ ? text_->keyLine(key) : 0; }
+
+ private:
+  std::string name_;
+  const JsonFileText* text_ = nullptr;
+};
+
 bool isPose(const nlohmann::json& pose) {
   if (!pose.is_array() || pose.size() != 7) return false;
   for (const auto& value : pose)
@@ -81,10 +108,8 @@ void checkMesh(const nlohmann::json& shape, const Fail& fail) {
 
 /// A shape of the plan's "shapes" or "visuals" (`array`), both drawn the same way.
 void checkShape(const nlohmann::json& shape, const char* array, std::size_t index,
-                std::size_t bodies, const std::string& source) {
-  const auto fail = [&](const std::string& what) {
-    throw ViewError(fmt::format("{}: {}[{}] {}", source, array, index, what));
-  };
+                std::size_t bodies, const PlanSource& source) {
+  const auto fail = [&](const std::string& what) { source.failAtElement(array, index, what); };
   if (!shape.is_object()) fail("is not an object");
   const std::string type = shape.value("type", "");
   if (type == "box") {
@@ -113,16 +138,74 @@ void checkShape(const nlohmann::json& shape, const char* array, std::size_t inde
 
 /// The page marks each control's frames by its "steps": the same controls validate accepts.
 /// A start scene (`kautham view problem.xml`) has none.
-void checkControlsForView(const nlohmann::json& plan, const std::string& source) {
+void checkControlsForView(const nlohmann::json& plan, const PlanSource& source) {
   if (!plan.contains("controls")) return;
   const auto& controls = plan["controls"];
-  if (!controls.is_array()) throw ViewError(source + ": the plan's \"controls\" is not an array");
+  if (!controls.is_array())
+    source.failAt(source.keyLine("controls"), "the plan's \"controls\" is not an array");
   const auto step = plan.value("propagation_step_size", nlohmann::json());
   if (!controls.empty() && !(step.is_number() && step.get<double>() > 0.0))
-    throw ViewError(source + ": the plan needs a positive \"propagation_step_size\"");
+    source.fail("the plan needs a positive \"propagation_step_size\"");
   for (std::size_t i = 0; i < controls.size(); ++i)
     if (const std::optional<std::string> error = planControlError(controls[i], step.get<double>()))
-      throw ViewError(fmt::format("{}: controls[{}]: {}", source, i, *error));
+      source.failAtElement("controls", i, ": " + *error);
+}
+
+void checkFrames(const nlohmann::json& frames, std::size_t bodies, const PlanSource& source) {
+  if (frames.empty()) source.failAt(source.keyLine("frames"), "the plan has no frames to show");
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const auto& frame = frames[i];
+    if (!frame.is_object() || !frame.contains("t") || !frame["t"].is_number())
+      source.failAtElement("frames", i, "has no time \"t\"");
+    if (!frame.contains("poses") || !frame["poses"].is_array() || frame["poses"].size() != bodies)
+      source.failAtElement("frames", i,
+                           fmt::format("has no \"poses\" array of one pose per body ({})", bodies));
+    for (const auto& pose : frame["poses"])
+      if (!isPose(pose))
+        source.failAtElement("frames", i,
+                             "holds a pose that is not seven numbers [x, y, z, qw, qx, qy, qz]");
+  }
+}
+
+void checkPlan(const nlohmann::json& plan, const PlanSource& source) {
+  if (!plan.is_object()) source.fail("not a kautham plan (not a JSON object)");
+  if (!plan.contains("format") || plan["format"] != "kautham-plan")
+    source.failAt(source.keyLine("format"),
+                  fmt::format("not a kautham plan (\"format\" is {}, expected \"kautham-plan\")",
+                              plan.contains("format") ? plan["format"].dump() : "missing"));
+  if (!plan.contains("format_version") || !plan["format_version"].is_number_integer())
+    source.failAt(source.keyLine("format_version"), "the plan has no integer \"format_version\"");
+  const auto version = plan["format_version"].get<std::int64_t>();
+  if (version != kPlanFormatVersion)
+    source.failAt(source.keyLine("format_version"),
+                  fmt::format("plan format version {} is not supported; this kautham reads "
+                              "version {}{}",
+                              version, kPlanFormatVersion,
+                              version < kPlanFormatVersion
+                                  ? " (plan the problem again to get a current plan file)"
+                                  : " (the file is from a newer kautham)"));
+  for (const char* key : {"bodies", "shapes", "frames"})
+    if (!plan.contains(key) || !plan[key].is_array())
+      source.failAt(source.keyLine(key), fmt::format("the plan has no \"{}\" array", key));
+
+  const auto& bodies = plan["bodies"];
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (!bodies[i].is_object() || !bodies[i].contains("name") || !bodies[i]["name"].is_string())
+      source.failAtElement("bodies", i, "has no \"name\"");
+  const auto& shapes = plan["shapes"];
+  if (shapes.empty()) source.failAt(source.keyLine("shapes"), "the plan has no shapes to show");
+  for (std::size_t i = 0; i < shapes.size(); ++i)
+    checkShape(shapes[i], "shapes", i, bodies.size(), source);
+  // Optional: what the robot looks like (plan files before visuals have none).
+  if (plan.contains("visuals")) {
+    const auto& visuals = plan["visuals"];
+    if (!visuals.is_array())
+      source.failAt(source.keyLine("visuals"), "the plan's \"visuals\" is not an array");
+    for (std::size_t i = 0; i < visuals.size(); ++i)
+      checkShape(visuals[i], "visuals", i, bodies.size(), source);
+  }
+  checkControlsForView(plan, source);
+  checkFrames(plan["frames"], bodies.size(), source);
 }
 
 }  // namespace
@@ -140,69 +223,13 @@ fs::path findThreeDir(const std::string& overrideDir) {
 }
 
 void checkPlanForView(const nlohmann::json& plan, const std::string& source) {
-  if (!plan.is_object()) throw ViewError(source + ": not a kautham plan (not a JSON object)");
-  if (!plan.contains("format") || plan["format"] != "kautham-plan")
-    throw ViewError(
-        fmt::format("{}: not a kautham plan (\"format\" is {}, expected \"kautham-plan\")", source,
-                    plan.contains("format") ? plan["format"].dump() : "missing"));
-  if (!plan.contains("format_version") || !plan["format_version"].is_number_integer())
-    throw ViewError(source + ": the plan has no integer \"format_version\"");
-  const auto version = plan["format_version"].get<std::int64_t>();
-  if (version != kPlanFormatVersion)
-    throw ViewError(fmt::format(
-        "{}: plan format version {} is not supported; this kautham reads version {}{}", source,
-        version, kPlanFormatVersion,
-        version < kPlanFormatVersion ? " (plan the problem again to get a current plan file)"
-                                     : " (the file is from a newer kautham)"));
-  for (const char* key : {"bodies", "shapes", "frames"})
-    if (!plan.contains(key) || !plan[key].is_array())
-      throw ViewError(fmt::format("{}: the plan has no \"{}\" array", source, key));
-
-  const auto& bodies = plan["bodies"];
-  for (std::size_t i = 0; i < bodies.size(); ++i)
-    if (!bodies[i].is_object() || !bodies[i].contains("name") || !bodies[i]["name"].is_string())
-      throw ViewError(fmt::format("{}: bodies[{}] has no \"name\"", source, i));
-  const auto& shapes = plan["shapes"];
-  if (shapes.empty()) throw ViewError(source + ": the plan has no shapes to show");
-  for (std::size_t i = 0; i < shapes.size(); ++i)
-    checkShape(shapes[i], "shapes", i, bodies.size(), source);
-  // Optional: what the robot looks like (plan files before visuals have none).
-  if (plan.contains("visuals")) {
-    const auto& visuals = plan["visuals"];
-    if (!visuals.is_array()) throw ViewError(source + ": the plan's \"visuals\" is not an array");
-    for (std::size_t i = 0; i < visuals.size(); ++i)
-      checkShape(visuals[i], "visuals", i, bodies.size(), source);
-  }
-  checkControlsForView(plan, source);
-  const auto& frames = plan["frames"];
-  if (frames.empty()) throw ViewError(source + ": the plan has no frames to show");
-  for (std::size_t i = 0; i < frames.size(); ++i) {
-    const auto& frame = frames[i];
-    if (!frame.is_object() || !frame.contains("t") || !frame["t"].is_number())
-      throw ViewError(fmt::format("{}: frames[{}] has no time \"t\"", source, i));
-    if (!frame.contains("poses") || !frame["poses"].is_array() ||
-        frame["poses"].size() != bodies.size())
-      throw ViewError(fmt::format("{}: frames[{}] has no \"poses\" array of one pose per body ({})",
-                                  source, i, bodies.size()));
-    for (const auto& pose : frame["poses"])
-      if (!isPose(pose))
-        throw ViewError(fmt::format(
-            "{}: frames[{}] holds a pose that is not seven numbers [x, y, z, qw, qx, qy, qz]",
-            source, i));
-  }
+  checkPlan(plan, PlanSource(source));
 }
 
 nlohmann::json readPlanForView(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw ViewError(fmt::format("{}: cannot open the plan file", file.string()));
-  nlohmann::json plan;
-  try {
-    plan = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::parse_error& e) {
-    throw ViewError(fmt::format("{}: not a JSON file (parse error at byte {}): {}", file.string(),
-                                e.byte, e.what()));
-  }
-  checkPlanForView(plan, file.string());
+  JsonFileText text(file);
+  const nlohmann::json plan = text.parse("the plan file", "not a JSON file: ");
+  checkPlan(plan, PlanSource(text));
   return plan;
 }
 

@@ -29,8 +29,9 @@ std::filesystem::path findThreeDir(const std::string& overrideDir);
 /// Throws ViewError.
 void checkPlanForView(const nlohmann::json& plan, const std::string& source);
 
-/// Reads and checks a plan file (checkPlanForView). Throws ViewError naming the file when it
-/// cannot be read, is not JSON (with the byte position of the error) or is no viewable plan.
+/// Reads and checks a plan file (checkPlanForView). Throws core::InputError naming the file
+/// when it cannot be read or is not JSON (with the line where parsing stopped), ViewError naming
+/// the file and the line of what is wrong when it is no viewable plan.
 nlohmann::json readPlanForView(const std::filesystem::path& file);
 
 /// The HTML page showing `plan` (checked with checkPlanForView), with three.js read from

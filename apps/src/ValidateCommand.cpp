@@ -158,15 +158,8 @@ class PlanReader {
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     throw core::InputError({source_.file(), key.empty() ? 1 : source_.keyLine(key)}, message);
   }
-  /// The line of the i-th control's values, for an error about its size.
-  int controlLine(std::size_t index) const {
-    const std::string& text = source_.text();
-    std::size_t at = text.find("\"controls\"");
-    if (at == std::string::npos) return 0;
-    const std::size_t key = at;
-    for (std::size_t n = 0; n <= index && at != std::string::npos; ++n) at = text.find('{', at + 1);
-    return source_.lineAt(at == std::string::npos ? key : at);
-  }
+  /// The line of the i-th control, for an error about it.
+  int controlLine(std::size_t index) const { return source_.elementLine("controls", index); }
   const fs::path& file() const { return source_.file(); }
 
  private:

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <regex>
 
 #include <unistd.h>
 
@@ -264,13 +265,19 @@ TEST_F(ValidateCommandTest, AbsurdControlValuesOrDurationsAreRefusedNamingTheCon
     const CommandRun run =
         kautham("validate problems/pusher_cans_5.xml " + quoted(file) + " --runs 2");
     EXPECT_EQ(run.exitCode, 2) << run.output;
-    // validate names the file and the control's line.
-    EXPECT_NE(run.output.find(file.string() + ":"), std::string::npos) << run.output;
+    // validate and view name the file and the same line, the control's.
+    std::smatch where;
+    ASSERT_TRUE(std::regex_search(run.output, where, std::regex(":(\\d+): controls\\[")))
+        << run.output;
+    EXPECT_NE(run.output.find(file.string() + ":" + where[1].str()), std::string::npos)
+        << run.output;
     EXPECT_NE(run.output.find(phrase), std::string::npos) << run.output;
     const CommandRun view =
         kautham("view " + quoted(file) + " -o " + quoted(folder / "edited.html"));
     EXPECT_EQ(view.exitCode, 2) << view.output;
-    EXPECT_NE(view.output.find(file.string() + ": controls["), std::string::npos) << view.output;
+    EXPECT_NE(view.output.find(file.string() + ":" + where[1].str() + ": controls["),
+              std::string::npos)
+        << view.output;
     EXPECT_NE(view.output.find(phrase), std::string::npos) << view.output;
   };
   rejected([](nlohmann::json& p) { p["controls"][1]["values"][0] = 1e300; },
