@@ -58,6 +58,7 @@ ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion
   job.steps = motion.steps;
   job.contact = context_.world().contactParameters();
   job.targetReference = context_.validityChecker().targetStart();
+  job.tiltLimit = nominalTiltLimit_;
   for (unsigned s = 1; s <= motion.steps; ++s) job.recordAfter.push_back(s);
   job.goalStop = throughGoal ? GoalStop::Leaving : GoalStop::Entering;
   return job;
@@ -68,6 +69,9 @@ std::pair<physics::Violation, std::optional<std::size_t>> MotionEvaluator::broke
   // Judged against the job's own target reference, as the run judged it.
   const physics::WorldValidityChecker& checker = context_.validityChecker();
   const physics::Violation violation = checker.check(state, job.targetReference);
+  if (violation == physics::Violation::None)  // within the scene's rules, not the job's margin
+    if (const auto tilted = runner_.tiltedBeyond(state, job.tiltLimit))
+      return {physics::Violation::ObjectTilted, tilted};
   return {violation, physics::isObjectRule(violation)
                          ? checker.offendingObject(state, job.targetReference, std::nullopt)
                          : std::nullopt};

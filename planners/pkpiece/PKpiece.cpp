@@ -98,6 +98,8 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       // `kautham validate`'s, whose seeds are small numbers).
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL) {
   specs_.approximateSolutions = true;
+  if (settings.tiltMargin < 1.0)
+    evaluator_.setNominalTiltLimit(settings.tiltMargin * context.problem().interaction.maxTilt);
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
   addPlannerProgressProperty("cells INTEGER", [this] { return std::to_string(cells_.size()); });

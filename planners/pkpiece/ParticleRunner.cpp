@@ -5,6 +5,7 @@
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
+#include "kautham/core/Pose.h"
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::planners {
@@ -15,7 +16,11 @@ ParticleRunner::ParticleRunner(physics::PlanningContext& context)
       to_(context.spaceInformation()->allocState()),
       control_(context.spaceInformation()->allocControl()),
       stateSize_(context.layout().stateSize()),
-      controlSize_(context.spaceInformation()->getControlSpace()->getDimension()) {}
+      controlSize_(context.spaceInformation()->getControlSpace()->getDimension()) {
+  const auto& bodies = context.layout().bodies;
+  for (std::size_t b = 0; b < bodies.size(); ++b)
+    if (bodies[b].role == physics::BodyRole::Movable) movableBodies_.push_back(b);
+}
 
 ParticleRunner::~ParticleRunner() {
   const auto& si = context_.spaceInformation();
@@ -36,6 +41,13 @@ bool ParticleRunner::step(const double* from, const double* control, double* to,
   return context_.validityChecker().check(to, targetReference) == physics::Violation::None;
 }
 
+std::optional<std::size_t> ParticleRunner::tiltedBeyond(const double* state, double limit) const {
+  if (limit <= 0.0) return std::nullopt;
+  for (std::size_t b : movableBodies_)
+    if (core::tiltAngle(physics::WorldLayout::orientation(state, b)) > limit) return b;
+  return std::nullopt;
+}
+
 ParticleResult ParticleRunner::run(const ParticleJob& job) {
   context_.world().setContactParameters(job.contact);
   ParticleResult result;
@@ -43,7 +55,8 @@ ParticleResult ParticleRunner::run(const ParticleJob& job) {
   std::vector<double> next(stateSize_);
   auto record = job.recordAfter.begin();
   for (unsigned i = 0; i < job.steps && result.valid; ++i) {
-    result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference);
+    result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference) &&
+                   !tiltedBeyond(next.data(), job.tiltLimit);
     bool stop = false;
     if (result.valid && job.goalStop != GoalStop::Ignore) {
       const bool inGoal = context_.goal().reached(next.data());

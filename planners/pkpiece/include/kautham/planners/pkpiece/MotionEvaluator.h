@@ -89,6 +89,11 @@ class MotionEvaluator {
   std::vector<NominalRun> runNominals(const double* start,
                                       const std::vector<NominalMotion>& motions, bool throughGoal);
 
+  /// Nominal runs treat a movable object tilted beyond `radians` as the scene's tilt rule
+  /// broken (tilt_margin: the plan keeps away from tipping cans); 0: the scene's maxTilt alone.
+  /// Particles and whole-plan executions judge by the scene's rules.
+  void setNominalTiltLimit(double radians) { nominalTiltLimit_ = radians; }
+
   /// Spreads particle jobs over `threads` processes: this one and threads - 1 forked workers
   /// (ParticleWorkers). 1: every job runs inline. Workers from an earlier call are reaped.
   void useWorkers(unsigned threads);
@@ -154,6 +159,7 @@ class MotionEvaluator {
   physics::PlanningContext& context_;
   physics::UncertaintySampler sampler_;
   double maxDisplacement_;
+  double nominalTiltLimit_ = 0.0;
   std::vector<std::size_t> objectBodies_;
   ParticleRunner runner_;
   std::unique_ptr<ParticleWorkers> workers_;  ///< none: jobs run inline

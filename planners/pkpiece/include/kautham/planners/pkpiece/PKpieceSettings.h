@@ -28,6 +28,11 @@ struct PKpieceSettings {
   /// goal's tolerance of the goal point: a plan ending on the region's border is missed by half
   /// of its executions. 1: anywhere in the region.
   double goalMargin;
+  /// The nominal runs (the tree's motions) keep every movable object within this fraction of
+  /// the scene's maxTilt; particles and verification judge by the scene's limit. A push that
+  /// tips a can part way in the nominal physics tips it over in many sampled executions
+  /// (docs/benchmarks.md, session 45). 1: the scene's limit.
+  double tiltMargin;
   /// Cells and motions are judged by the belief of the whole path to a motion (the product
   /// of its candidates' beliefs) rather than by the motion's own (docs/planners.md).
   bool pathBelief;
@@ -211,6 +216,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("how deep in the goal region a plan must end: its nominal end within "
                              "this fraction of the goal's tolerance of the goal point (1: "
                              "anywhere in the region; at 0 none could end)"))
+          .add(&S::tiltMargin,
+               Parameter::real("tilt_margin")
+                   .byDefault(1.0)
+                   .range(0.05, 1.0)
+                   .describe("the tree's nominal motions keep every movable object within this "
+                             "fraction of the scene's maxTilt (particles and verification judge "
+                             "by the scene's limit; 1: the scene's limit)"))
           .add(&S::pathBelief,
                Parameter::flag("path_belief")
                    .byDefault(1)

@@ -27,6 +27,9 @@ struct ParticleJob {
   /// Step counts (ascending, at most `steps`) after which the state is kept in the result.
   std::vector<unsigned> recordAfter;
   GoalStop goalStop = GoalStop::Ignore;
+  /// A tighter limit than the scene's maxTilt for the movable objects (rad; 0: the scene's
+  /// alone): a state where one tilts further is invalid (tilt_margin, nominal runs only).
+  double tiltLimit = 0.0;
 };
 
 /// What a particle motion gave.

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include <ompl/base/State.h>
@@ -29,8 +30,11 @@ class ParticleRunner {
   bool step(const double* from, const double* control, double* to,
             const Eigen::Vector3d& targetReference);
   /// Sets the job's contact parameters (they stay set: the caller restores its own) and steps
-  /// the control from the start state until the first invalid state or `steps` steps.
+  /// the control from the start state until the first invalid state or `steps` steps; with
+  /// the job's tiltLimit, a movable object tilted beyond it makes a state invalid too.
   ParticleResult run(const ParticleJob& job);
+  /// The first movable object tilted more than `limit` (rad) in `state`; none when limit <= 0.
+  std::optional<std::size_t> tiltedBeyond(const double* state, double limit) const;
   /// Executes the whole plan `controls` once in a world sampled with the stream `seed`, as
   /// `kautham validate` does (physics::execute with a std::mt19937_64 seeded by it): the same
   /// run in any process with a copy of the context.
@@ -48,6 +52,7 @@ class ParticleRunner {
   ompl::control::Control* control_;
   std::size_t stateSize_;
   std::size_t controlSize_;
+  std::vector<std::size_t> movableBodies_;  ///< what tiltedBeyond looks at
 };
 
 }  // namespace kautham::planners
