@@ -26,8 +26,12 @@ int JsonFileText::lineAt(std::size_t offset) const {
   return 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + offset, '\n'));
 }
 
+std::size_t JsonFileText::keyOffset(const std::string& key) const {
+  return text_.find("\"" + key + "\"");
+}
+
 int JsonFileText::keyLine(const std::string& key) const {
-  const std::size_t at = text_.find("\"" + key + "\"");
+  const std::size_t at = keyOffset(key);
   return at == std::string::npos ? 0 : lineAt(at);
 }
 
@@ -78,7 +82,7 @@ std::size_t arrayElement(const std::string& text, std::size_t open, std::size_t 
 }  // namespace
 
 int JsonFileText::elementLine(const std::string& key, std::size_t index) const {
-  const std::size_t at = text_.find("\"" + key + "\"");
+  const std::size_t at = keyOffset(key);
   if (at == std::string::npos) return 0;
   std::size_t open = at + key.size() + 2;
   while (open < text_.size() && (isJsonSpace(text_[open]) || text_[open] == ':')) ++open;

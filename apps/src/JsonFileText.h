@@ -30,6 +30,9 @@ class JsonFileText {
   const std::filesystem::path& file() const { return file_; }
 
  private:
+  /// Offset of the first "key" in the text; npos when it is not there.
+  std::size_t keyOffset(const std::string& key) const;
+
   std::filesystem::path file_;
   std::string text_;
 };

@@ -117,11 +117,10 @@ const tinyxml2::XMLElement& XmlReader::root(const char* expectedName) const {
 }
 
 void XmlReader::requireNothingAfterRoot(const char* rootName) const {
-  const std::string& text = text_;
-  const std::optional<std::size_t> after = contentAfterRoot(text, rootName);
+  const std::optional<std::size_t> after = contentAfterRoot(text_, rootName);
   if (!after) return;
-  const int line = 1 + static_cast<int>(std::count(text.begin(), text.begin() + *after, '\n'));
-  std::string what = text.substr(*after, 40);
+  const int line = 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + *after, '\n'));
+  std::string what = text_.substr(*after, 40);
   what = what.substr(0, what.find('\n'));
   throw InputError({file_, line}, std::string("the file goes on after </") + rootName + "> with '" +
                                       what + "': a file holds one <" + rootName +
