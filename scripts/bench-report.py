@@ -20,7 +20,11 @@ Output, in the folder given by -o (default: INPUT/report for a folder, the datab
   fig_calibration  the planner's estimated success vs the measured execution success, one point
                    per solved and validated plan, with the diagonal and the mean gap
   (each as .svg and .png), table.md (a markdown table for the docs), summary.json (every number
-  of the tables) and index.html (the figures and the table).
+  of the tables) and index.html (the figures and the tables); given `kautham bench`'s output
+  folder, also failures.md: why the executions of its validated plans failed, per problem and
+  configuration (goal missed: the free space not clear, and what was in it, or the gripper off
+  the goal pose; objects tipped; the target touched; ...), from its
+  plans/PROBLEM/CONFIG/run-R.validation.json.
 
 Definitions:
   - planning success: `solved` is 1 and `approximate solution` is not 1 (OMPL 1.5.2 writes
@@ -444,6 +448,125 @@ def paper_markdown():
     return lines
 
 
+# ----------------------------------------------------------------------------- failures
+
+# The validation's failure kinds (`kautham validate --json`, "failures"), in the table's order.
+FAILURE_KINDS = [("goal_missed", "goal missed"), ("object_fell_or_tipped", "object tipped"),
+                 ("target_touched", "target touched"), ("too_fast", "too fast"),
+                 ("other", "other")]
+
+
+def plans_folders(inputs):
+    """The plans/ folders of `kautham bench` output folders among the inputs, and of their
+    shards (a Slurm campaign's OUT/shard-I), the folder's own first."""
+    folders = []
+    for p in inputs:
+        if os.path.isdir(p):
+            folders += [f for f in [os.path.join(p, "plans")] if os.path.isdir(f)]
+            folders += sorted(glob.glob(os.path.join(p, "shard-*", "plans")))
+    return folders
+
+
+def read_validation(path):
+    try:
+        with open(path) as f:
+            report = json.load(f)
+    except (OSError, ValueError) as e:
+        raise BadInput(f"{path}: not a readable validation file ({e}); run `kautham validate "
+                       "PROBLEM PLAN --json` again, or move the file away")
+    if not isinstance(report, dict) or report.get("format") != "kautham-validation":
+        raise BadInput(f"{path}: not a `kautham validate --json` report (no \"format\": "
+                       "\"kautham-validation\")")
+    return report
+
+
+def read_failures(folders):
+    """Why the executions failed, per problem and configuration, from the validation reports
+    `kautham bench` writes beside its plans (OUT/plans/PROBLEM/CONFIG/run-R.validation.json)."""
+    groups = {}
+    seen = set()  # a run found in two folders counts once, from the first (as bench's merge)
+    for folder in folders:
+        pattern = os.path.join(folder, "*", "*", "run-*.validation.json")
+        for path in sorted(glob.glob(pattern)):
+            config_dir = os.path.dirname(path)
+            key = (os.path.basename(os.path.dirname(config_dir)), os.path.basename(config_dir))
+            if (key, os.path.basename(path)) in seen:
+                continue
+            seen.add((key, os.path.basename(path)))
+            report = read_validation(path)
+            g = groups.setdefault(key, {
+                "problem": key[0], "configuration": key[1], "plans": 0, "executions": 0,
+                "successes": 0, "failures": {k: 0 for k, _ in FAILURE_KINDS},
+                "free_space_not_clear": 0, "free_space_objects": {}, "goal_pose_missed": 0,
+                "rule_breakers": {}})
+            g["plans"] += 1
+            g["executions"] += int(report.get("runs", 0))
+            g["successes"] += int(report.get("successes", 0))
+            for kind, _ in FAILURE_KINDS:
+                g["failures"][kind] += int(report.get("failures", {}).get(kind, 0))
+            free = report.get("free_space_not_clear", {})
+            g["free_space_not_clear"] += int(free.get("runs", 0))
+            count_into(g["free_space_objects"], free.get("by_object", {}).items())
+            g["goal_pose_missed"] += int(report.get("goal_pose_missed", {}).get("runs", 0))
+            count_into(g["rule_breakers"], ((r["object"], 1) for r in report.get("results", [])
+                                            if r.get("violation", "none") != "none"
+                                            and r.get("object")))
+    return [groups[k] for k in sorted(groups)]
+
+
+def count_into(counts, items):
+    for name, n in items:
+        counts[name] = counts.get(name, 0) + int(n)
+
+
+def most(counts, k=3):
+    top = sorted(counts.items(), key=lambda x: (-x[1], x[0]))
+    text = ", ".join(f"{name} {n}" for name, n in top[:k])
+    return text + (f" (+{len(top) - k} more)" if len(top) > k else "")
+
+
+def failure_rows(groups):
+    header = ["problem", "configuration", "plans", "executions", "success %", "goal missed %",
+              "free space not clear %", "in the free space", "gripper off the goal pose %"] + \
+        [f"{label} %" for kind, label in FAILURE_KINDS if kind != "goal_missed"] + \
+        ["objects that broke a rule"]
+    rows = []
+    for g in groups:
+        n = g["executions"]
+
+        def share(count):
+            return pct(count / n, 1) if n else "—"
+
+        rows.append([g["problem"], g["configuration"], str(g["plans"]), str(n),
+                     share(g["successes"]), share(g["failures"]["goal_missed"]),
+                     share(g["free_space_not_clear"]), most(g["free_space_objects"]),
+                     share(g["goal_pose_missed"])]
+                    + [share(g["failures"][kind]) for kind, _ in FAILURE_KINDS
+                       if kind != "goal_missed"]
+                    + [most(g["rule_breakers"])])
+    return header, rows
+
+
+FAILURE_NOTE = ("Why the executions of the validated plans failed, as shares of all their "
+                "executions (`kautham validate`; unsolved runs have no executions). A goal "
+                "missed is the free space not clear at the end, the gripper off the goal pose, "
+                "or both, so those two columns may add up to more; \"in the free space\": the "
+                "objects found there most (executions); \"objects that broke a rule\": the "
+                "object named by each execution that broke one (tipped, moved the target, too "
+                "fast), most first.")
+
+
+def write_failures(path, groups):
+    header, rows = failure_rows(groups)
+    lines = ["| " + " | ".join(header) + " |",
+             "|" + "|".join("---" if i < 2 or i == 7 or i == len(header) - 1 else "---:"
+                            for i in range(len(header))) + "|"]
+    lines += ["| " + " | ".join(r) + " |" for r in rows]
+    lines += ["", FAILURE_NOTE]
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
 # ----------------------------------------------------------------------------- figures
 
 
@@ -680,7 +803,8 @@ CAPTIONS = {
 }
 
 
-def write_html(path, cells, planners, with_paper, notes, figure_names, source, figures_note):
+def write_html(path, cells, planners, with_paper, notes, figure_names, source, figures_note,
+               failures=()):
     header, rows = table_rows(cells, with_paper)
     esc = html.escape
     out = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'>",
@@ -715,6 +839,13 @@ def write_html(path, cells, planners, with_paper, notes, figure_names, source, f
     out.append("</table>")
     for note in notes:
         out.append(f"<p>{esc(note)}</p>")
+    if failures:
+        header, rows = failure_rows(failures)
+        out.append("<h2>Why the executions failed</h2><table><tr>"
+                   + "".join(f"<th>{esc(h)}</th>" for h in header) + "</tr>")
+        for r in rows:
+            out.append("<tr>" + "".join(f"<td>{esc(v)}</td>" for v in r) + "</tr>")
+        out.append(f"</table><p>{esc(FAILURE_NOTE)}</p>")
     if with_paper:
         out.append("<h2>The paper's Table I</h2><p>Muhayyuddin et al., RA-L 2018 (i7-4500U, "
                    "30 runs per scene, robot not given): pKP and pKPU are p-KPIECE without and "
@@ -752,7 +883,9 @@ def parse_args(argv):
                "that did\nnot solve, solved runs without one are left out. Runs of a "
                "problem and planner in several logs are pooled.\n"
                "Writes fig_success, fig_time, fig_execution, fig_calibration (.svg, .png), "
-               "table.md, summary.json,\nindex.html (and benchmark.db when given logs).\n"
+               "table.md, summary.json,\nindex.html (and benchmark.db when given logs; "
+               "failures.md, why the executions failed, when given\nkautham bench's output "
+               "folder with its plans/).\n"
                "Exit codes: 0 report written, 2 bad input.",
         formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("inputs", nargs="+", metavar="INPUT",
@@ -796,6 +929,7 @@ def main(argv):
 
     runs, _ = read_database(db)
     cells, planners = summarise(runs)
+    failures = read_failures(plans_folders(args.inputs))
     plt = None
     figures_note = ""
     if not args.no_figures:
@@ -835,10 +969,14 @@ def main(argv):
                      "p-KPIECE without/with uncertainty; TP, TPU: task-and-motion planners):",
                      ""] + paper_markdown()
     write_markdown(md, cells, args.paper, md_notes)
+    if failures:
+        write_failures(os.path.join(outdir, "failures.md"), failures)
+        written.append(os.path.join(outdir, "failures.md"))
     with open(os.path.join(outdir, "summary.json"), "w") as f:
-        json.dump({"source": source, "planners": planners, "cells": cells}, f, indent=1)
+        json.dump({"source": source, "planners": planners, "cells": cells,
+                   "failures": failures}, f, indent=1)
     write_html(os.path.join(outdir, "index.html"), cells, planners, args.paper, notes,
-               figure_names, source, figures_note)
+               figure_names, source, figures_note, failures)
     written += [md, os.path.join(outdir, "summary.json"), os.path.join(outdir, "index.html")]
     for p in planners:
         gaps = [e - x for c in cells if c["planner"] == p for e, x in c["calibration"]]

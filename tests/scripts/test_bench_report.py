@@ -16,6 +16,10 @@ yumi_clutter_5, pKPU: two shard logs of 3 runs each, one naming it control_pKPU 
 pusher_free, RRT (limit 10 s): no object count in the name, OMPL's properties only; 3 solved,
   1 timeout, 1 crash (status 7, counted as failed and not solved): 3/5, Wilson [0.2307, 0.8824],
   times 0.5 0.7 0.9 10 10 -> median 0.9, mean 4.42; no execution success.
+A bench output folder (logs/ and plans/) with two validation reports of kuka_clutter_10's pKPU
+  plans, 10 executions each: 6 and 8 successes (70 %); goal missed 3 + 1 (20 %), the free space
+  not clear 2 (can20) + 1 (can23) (15 %), the gripper off the goal pose 2 (10 %), a can tipped 1
+  (5 %), the target touched 1 (5 %); the objects named by a broken rule can15 and glass.
 
 Run: /usr/bin/python3 tests/scripts/test_bench_report.py (CTest: bench_report).
 """
@@ -171,6 +175,89 @@ class BadInput(unittest.TestCase):
                 result = report(path, "-o", os.path.join(tmp, "out"))
                 self.assertEqual(result.returncode, 2, path)
                 self.assertIn(message, result.stderr, path)
+
+
+def validation(runs, successes, failures, free, free_objects, pose_missed, breakers):
+    results = [{"violation": v, "object": o, "reached_goal": False} for v, o in breakers]
+    results += [{"violation": "none", "reached_goal": True}] * (runs - len(results))
+    kinds = {"goal_missed": 0, "object_fell_or_tipped": 0, "target_touched": 0, "too_fast": 0,
+             "other": 0}
+    kinds.update(failures)
+    return {"format": "kautham-validation", "runs": runs, "successes": successes,
+            "failures": kinds, "free_space_not_clear": {"runs": free, "by_object": free_objects},
+            "goal_pose_missed": {"runs": pose_missed, "position": pose_missed, "approach": 0,
+                                 "level": 0},
+            "results": results}
+
+
+class FromBenchFolder(unittest.TestCase):
+    """failures.md: why the executions failed, from the bench's validation reports."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.bench = os.path.join(self.tmp.name, "out")
+        os.makedirs(os.path.join(self.bench, "logs"))
+        with open(os.path.join(DATA, "kuka_clutter_10.log")) as src, \
+                open(os.path.join(self.bench, "logs", "kuka_clutter_10.log"), "w") as dst:
+            dst.write(src.read())
+        self.plans = os.path.join(self.bench, "plans", "kuka_clutter_10", "pKPU")
+        os.makedirs(self.plans)
+        reports = [validation(10, 6, {"goal_missed": 3, "object_fell_or_tipped": 1}, 2,
+                              {"can20": 2}, 2, [("object tilted", "can15")]),
+                   validation(10, 8, {"goal_missed": 1, "target_touched": 1}, 1, {"can23": 1},
+                              0, [("target moved", "glass")])]
+        for r, content in enumerate(reports):
+            with open(os.path.join(self.plans, f"run-{r}.validation.json"), "w") as f:
+                json.dump(content, f)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_failures_table_and_summary(self):
+        result = report(self.bench, "--no-figures")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        out = os.path.join(self.bench, "report")
+        with open(os.path.join(out, "failures.md")) as f:
+            text = f.read()
+        self.assertIn("| kuka_clutter_10 | pKPU | 2 | 20 | 70.0 | 20.0 | 15.0 | can20 2, can23 1 | "
+                      "10.0 | 5.0 | 5.0 | 0.0 | 0.0 | can15 1, glass 1 |", text)
+        with open(os.path.join(out, "summary.json")) as f:
+            failures = json.load(f)["failures"]
+        self.assertEqual(len(failures), 1)
+        self.assertEqual(failures[0]["free_space_objects"], {"can20": 2, "can23": 1})
+        with open(os.path.join(out, "index.html")) as f:
+            self.assertIn("Why the executions failed", f.read())
+
+    def test_a_broken_validation_report_is_named(self):
+        broken = os.path.join(self.plans, "run-2.validation.json")
+        with open(broken, "w") as f:
+            f.write("{\"format\": \"kautham-validation\", \"runs\": ")
+        result = report(self.bench, "--no-figures")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn(broken, result.stderr)
+        self.assertIn("not a readable validation file", result.stderr)
+
+    def test_shards_pooled_and_a_run_counted_once(self):
+        # A Slurm campaign's shard holds run-1 again (counted once, from OUT's own plans/) and
+        # run-2, a new plan with 10 successes of 10.
+        shard = os.path.join(self.bench, "shard-1", "plans", "kuka_clutter_10", "pKPU")
+        os.makedirs(shard)
+        for r, successes in ((1, 0), (2, 10)):
+            with open(os.path.join(shard, f"run-{r}.validation.json"), "w") as f:
+                json.dump(validation(10, successes, {"goal_missed": 10 - successes}, 0, {}, 0,
+                                     []), f)
+        result = report(self.bench, "--no-figures")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(self.bench, "report", "summary.json")) as f:
+            failures = json.load(f)["failures"][0]
+        self.assertEqual((failures["plans"], failures["executions"], failures["successes"]),
+                         (3, 30, 24))
+
+    def test_logs_alone_write_no_failures_table(self):
+        result = report(os.path.join(self.bench, "logs"), "-o", os.path.join(self.tmp.name, "r"),
+                        "--no-figures")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertFalse(os.path.exists(os.path.join(self.tmp.name, "r", "failures.md")))
 
 
 class Statistics(unittest.TestCase):
