@@ -18,8 +18,6 @@ import argparse
 import json
 import math
 import os
-import re
-import subprocess
 import sys
 import xml.etree.ElementTree as ET
 
@@ -42,17 +40,13 @@ matplotlib.rcParams["svg.fonttype"] = "none"
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.patches import Circle, Rectangle  # noqa: E402
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-RADIUS = {"can": 0.033, "box": 0.03, "bottle": 0.035, "cylinder": 0.035, "slim_glass": 0.02}
+import kautham_scene  # noqa: E402
+from kautham_scene import RADIUS, numbers  # noqa: E402
 
 
 def shape(kind, x, y, r, **style):
     return (Rectangle((x - r, y - r), 2 * r, 2 * r, **style) if kind == "box"
             else Circle((x, y), r, **style))
-
-
-def numbers(text):
-    return [float(v) for v in text.split()]
 
 
 # A plan names an object as moved beyond this (m), as `kautham plan` does.
@@ -101,14 +95,10 @@ def main():
     args = parser.parse_args()
     before, after, link_path = (plan_poses(args.plan, args.problem) if args.plan
                                 else ({}, {}, []))
-    kautham = os.environ.get("KAUTHAM", os.path.join(ROOT, "build", "apps", "kautham"))
-    check = subprocess.run([kautham, "check", args.problem], capture_output=True, text=True)
-    if check.returncode != 0:
-        sys.exit(f"scene-picture: kautham check failed:\n{check.stderr}")
-    match = re.search(r"^blockers .*?: (.*)$", check.stdout, re.M)
-    blockers = set(match.group(1).split(", ")) if match else set()
-    goal = re.search(r"within [0-9.]+ m of \(([-0-9.e]+), ([-0-9.e]+), ([-0-9.e]+)\)", check.stdout)
-    gx, gy = float(goal.group(1)), float(goal.group(2))
+    try:
+        (gx, gy, _), blockers = kautham_scene.check(args.problem)
+    except RuntimeError as e:
+        sys.exit(f"scene-picture: {e}")
 
     root = ET.parse(args.problem).getroot()
     region = root.find(".//GoalRegion")
@@ -127,14 +117,7 @@ def main():
     ax.add_patch(Rectangle((gx - width / 2, gy + behind), width, front - behind, fill=False,
                            ec="#08519c", lw=1.5, zorder=4, label="free space at the goal"))
     in_scene = set()
-    for obstacle in root.findall("Obstacle"):
-        name = obstacle.find("KauthamName").get("name")
-        home = obstacle.find("Home")
-        x, y = float(home.get("X")), float(home.get("Y"))
-        kind = os.path.splitext(os.path.basename(obstacle.get("obstacle")))[0]
-        role = obstacle.get("role")
-        if role == "fixed":
-            continue
+    for name, kind, role, x, y in kautham_scene.objects(root):
         r = RADIUS.get(kind, 0.03)
         colour = "#2ca25f" if role == "target" else "#fd8d3c" if name in blockers else "#bdbdbd"
         in_scene.add(name)
