@@ -499,19 +499,29 @@ def read_failures(folders):
                 "successes": 0, "failures": {k: 0 for k, _ in FAILURE_KINDS},
                 "free_space_not_clear": 0, "free_space_objects": {}, "goal_pose_missed": 0,
                 "rule_breakers": {}})
-            g["plans"] += 1
-            g["executions"] += int(report.get("runs", 0))
-            g["successes"] += int(report.get("successes", 0))
-            for kind, _ in FAILURE_KINDS:
-                g["failures"][kind] += int(report.get("failures", {}).get(kind, 0))
-            free = report.get("free_space_not_clear", {})
-            g["free_space_not_clear"] += int(free.get("runs", 0))
-            count_into(g["free_space_objects"], free.get("by_object", {}).items())
-            g["goal_pose_missed"] += int(report.get("goal_pose_missed", {}).get("runs", 0))
-            count_into(g["rule_breakers"], ((r["object"], 1) for r in report.get("results", [])
-                                            if r.get("violation", "none") != "none"
-                                            and r.get("object")))
+            try:
+                add_validation(g, report)
+            except (AttributeError, KeyError, TypeError, ValueError) as e:
+                raise BadInput(f"{path}: a validation report with a field of the wrong kind "
+                               f"({type(e).__name__}: {e}); run `kautham validate PROBLEM PLAN "
+                               "--json` again, or move the file away")
     return [groups[k] for k in sorted(groups)]
+
+
+def add_validation(g, report):
+    """Adds one plan's validation report to its problem and configuration's counts."""
+    g["plans"] += 1
+    g["executions"] += int(report.get("runs", 0))
+    g["successes"] += int(report.get("successes", 0))
+    for kind, _ in FAILURE_KINDS:
+        g["failures"][kind] += int(report.get("failures", {}).get(kind, 0))
+    free = report.get("free_space_not_clear", {})
+    g["free_space_not_clear"] += int(free.get("runs", 0))
+    count_into(g["free_space_objects"], free.get("by_object", {}).items())
+    g["goal_pose_missed"] += int(report.get("goal_pose_missed", {}).get("runs", 0))
+    count_into(g["rule_breakers"], ((r["object"], 1) for r in report.get("results", [])
+                                    if r.get("violation", "none") != "none"
+                                    and r.get("object")))
 
 
 def count_into(counts, items):

@@ -236,6 +236,12 @@ class FromBenchFolder(unittest.TestCase):
         self.assertEqual(result.returncode, 2)
         self.assertIn(broken, result.stderr)
         self.assertIn("not a readable validation file", result.stderr)
+        with open(broken, "w") as f:
+            json.dump(dict(validation(10, 6, {}, 0, {}, 0, []), runs="many"), f)
+        result = report(self.bench, "--no-figures")
+        self.assertEqual(result.returncode, 2)
+        self.assertIn(f"{broken}: a validation report with a field of the wrong kind",
+                      result.stderr)
 
     def test_shards_pooled_and_a_run_counted_once(self):
         # A Slurm campaign's shard holds run-1 again (counted once, from OUT's own plans/) and
