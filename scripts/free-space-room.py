@@ -4,8 +4,8 @@ uncertainty alone fills it: a ceiling on the execution success of any plan that 
 objects beside the free space where they stand.
 
 Seen from above, the objects are discs at their homes (the radii of scene-picture.py; a box as
-the disc around its centre's half width) and the goal's free space is its rectangle, moved with
-the gripper. The gripper may end anywhere within --shift of the goal point, turned up to --yaw
+the disc of its half width, its corners left out) and the goal's free space is its rectangle,
+moved with the gripper. The gripper may end anywhere within --shift of the goal point, turned up to --yaw
 about the vertical (p-KPIECE's `goal_shift` and GoalEnd's turns): the end that leaves the most
 room to the nearest object is found on a 0.5 mm and 0.01 rad grid. Then --samples worlds are
 drawn from the problem's <Uncertainty x y> (each object's position, normal, independent), and
