@@ -58,7 +58,10 @@ import sqlite3
 import subprocess
 import sys
 
-Z95 = 1.959963984540054  # the 97.5 % quantile of the standard normal
+# The shared statistics sit beside this script (also when a test loads it by its path).
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from kautham_stats import wilson  # noqa: E402
+
 
 # The paper's Table I (Muhayyuddin et al., RA-L 2018; i7-4500U, 30 runs per scene; the robot is
 # not given): N -> (success %, mean planning time s); None where the paper has "-".
@@ -80,19 +83,6 @@ class BadInput(Exception):
 
 
 # ----------------------------------------------------------------------------- statistics
-
-
-def wilson(k, n, z=Z95):
-    """The Wilson score interval of a binomial proportion k/n: (low, high), or None for n = 0."""
-    if n <= 0:
-        return None
-    p = k / n
-    denom = 1 + z * z / n
-    center = (p + z * z / (2 * n)) / denom
-    half = z / denom * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-    low = 0.0 if k <= 0 else max(0.0, center - half)
-    high = 1.0 if k >= n else min(1.0, center + half)
-    return low, high
 
 
 def median(values):

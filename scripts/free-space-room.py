@@ -30,9 +30,7 @@ import xml.etree.ElementTree as ET
 
 import kautham_scene
 from kautham_scene import RADIUS, numbers
-
-Z95 = 1.959963984540054
-
+from kautham_stats import wilson
 
 class Scene:
     """The free space's rectangle from above, in the frame of the approach: `along` the approach,
@@ -106,13 +104,6 @@ class Scene:
                     if here > best[0]:
                         best = (here, (dx, dy, yaw))
         return best
-
-
-def wilson(k, n):
-    p = k / n
-    centre = (p + Z95 * Z95 / (2 * n)) / (1 + Z95 * Z95 / n)
-    half = Z95 * math.sqrt(p * (1 - p) / n + Z95 * Z95 / (4 * n * n)) / (1 + Z95 * Z95 / n)
-    return centre - half, centre + half
 
 
 def main(argv):
