@@ -271,6 +271,42 @@ std::string describeOffenders(const std::map<std::string, std::size_t>& offender
   return text + " (the object that broke the rule)";
 }
 
+/// When each of a plan's controls starts and ends, in seconds of motion.
+struct ControlWindow {
+  double start = 0.0;
+  double end = 0.0;
+};
+
+std::vector<ControlWindow> controlWindows(const PlanControls& plan) {
+  std::vector<ControlWindow> windows;
+  double t = 0.0;
+  for (const physics::ControlStep& c : plan.controls) {
+    const double end = t + c.steps * plan.propagationStepSize;
+    windows.push_back({t, end});
+    t = end;
+  }
+  return windows;
+}
+
+/// "control 12 (2.60-2.85 s) in 31 runs, control 11 (2.40-2.60 s) in 14, ...": the controls
+/// during which runs broke a rule, most often first (the earlier among equals), at most five.
+std::string describeBrokenControls(const std::map<std::size_t, std::size_t>& counts,
+                                   const std::vector<ControlWindow>& windows) {
+  constexpr std::size_t kShown = 5;
+  std::vector<std::pair<std::size_t, std::size_t>> sorted(counts.begin(), counts.end());
+  std::stable_sort(sorted.begin(), sorted.end(),
+                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string text;
+  for (std::size_t i = 0; i < std::min(sorted.size(), kShown); ++i) {
+    const auto [control, runs] = sorted[i];
+    text += fmt::format("{}control {} ({:.2f}-{:.2f} s) in {}{}", i ? ", " : "", control,
+                        windows[control].start, windows[control].end, runs,
+                        i ? "" : (runs == 1 ? " run" : " runs"));
+  }
+  if (sorted.size() > kShown) text += fmt::format(", {} more", sorted.size() - kShown);
+  return text + " (the control during which the rule broke)";
+}
+
 /// "the free space not clear in 30 runs: can1 in 20, can21 in 12": of the runs that ended with
 /// the gripper where the goal asks, how many had objects between the fingers, and which, most
 /// often first.
@@ -411,7 +447,9 @@ int runValidate(const ValidateOptions& options) {
   std::size_t rejectedStarts = 0;
   std::map<Failure, std::size_t> failures;
   std::map<physics::Violation, std::size_t> violations;
-  std::map<std::string, std::size_t> offenders;  ///< runs in which each object broke a rule
+  std::map<std::string, std::size_t> offenders;       ///< runs in which each object broke a rule
+  std::map<std::size_t, std::size_t> brokenControls;  ///< runs that broke a rule in each control
+  const std::vector<ControlWindow> windows = controlWindows(plan);
   /// Valid runs that ended with the gripper where the goal asks, missing it only because the
   /// free space between the fingers was not clear; and in how many of them each object was.
   std::size_t runsWithFreeSpaceNotClear = 0;
@@ -432,6 +470,10 @@ int runValidate(const ValidateOptions& options) {
       const std::string& name = context.layout().bodies[*r.offendingObject].name;
       runJson["object"] = name;
       ++offenders[name];
+    }
+    if (r.brokenInControl) {
+      runJson["control"] = *r.brokenInControl;
+      ++brokenControls[*r.brokenInControl];
     }
     if (!r.leftInFreeSpace.empty()) {
       runJson["left_in_free_space"] = r.leftInFreeSpace;
@@ -485,6 +527,8 @@ int runValidate(const ValidateOptions& options) {
                detail.empty() ? "" : " (" + detail.substr(2) + ")");
   }
   if (!offenders.empty()) fmt::print("objects      {}\n", describeOffenders(offenders));
+  if (!brokenControls.empty())
+    fmt::print("when         {}\n", describeBrokenControls(brokenControls, windows));
   fmt::print("goal distance {:.1f} cm on average at the end\n",
              100.0 * distanceSum / static_cast<double>(options.runs));
   if (rejectedStarts > 0)
@@ -496,6 +540,12 @@ int runValidate(const ValidateOptions& options) {
     json byViolation = json::object();
     for (const auto& [violation, count] : violations)
       byViolation[physics::toString(violation)] = count;
+    json byControl = json::array();
+    for (const auto& [control, runs] : brokenControls)
+      byControl.push_back({{"control", control},
+                           {"start", windows[control].start},
+                           {"end", windows[control].end},
+                           {"runs", runs}});
     const json report = {
         {"format", "kautham-validation"},
         {"problem", {{"name", problem.name}, {"file", problem.file.string()}}},
@@ -511,6 +561,7 @@ int runValidate(const ValidateOptions& options) {
          {{"method", "wilson"}, {"level", 0.95}, {"low", ci.low}, {"high", ci.high}}},
         {"failures", byReason},
         {"violations", byViolation},
+        {"broken_in_control", byControl},
         {"free_space_not_clear",
          {{"runs", runsWithFreeSpaceNotClear}, {"by_object", leftInFreeSpace}}},
         {"goal_pose_missed",

@@ -94,7 +94,8 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
 
   World& world = context.world();
   world.release();
-  for (const ControlStep& step : controls) {
+  for (std::size_t c = 0; c < controls.size(); ++c) {
+    const ControlStep& step = controls[c];
     if (result.firstViolation != Violation::None) break;
     applyGripperAction(world, step, values);
     if (sampler)
@@ -108,6 +109,7 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       result.time += stepSize;
       result.firstViolation = checker->check(values, checker->targetStart(), world.held());
     }
+    if (result.firstViolation != Violation::None) result.brokenInControl = c;
   }
   if (result.firstViolation != Violation::None)
     result.offendingObject = checker->offendingObject(values, checker->targetStart(), world.held());

@@ -4,7 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <regex>
+#include <vector>
 
 #include <unistd.h>
 
@@ -156,6 +158,34 @@ TEST_F(ValidateCommandTest, LargeUncertaintyMakesRunsFailAndCountsWhy) {
   }
   EXPECT_GT(named, 0) << run.output;
   EXPECT_NE(run.output.find("objects      glass in "), std::string::npos) << run.output;
+
+  // A run that broke a rule names the control it broke it in: the one whose time window holds
+  // the moment it stopped; and the report counts the runs per control.
+  const nlohmann::json planJson = readJson(plan());
+  const double step = planJson["propagation_step_size"];
+  std::vector<double> ends;
+  for (const auto& c : planJson["controls"])
+    ends.push_back((ends.empty() ? 0.0 : ends.back()) + c["steps"].get<double>() * step);
+  std::map<int, int> perControl;
+  for (const auto& r : report["results"]) {
+    if (r["violation"] == "none") {
+      EXPECT_FALSE(r.contains("control")) << r.dump();
+      continue;
+    }
+    const int control = r.at("control");
+    ++perControl[control];
+    const double t = r["time"];
+    EXPECT_GT(t, (control == 0 ? 0.0 : ends.at(control - 1)) + 1e-9) << r.dump();
+    EXPECT_LE(t, ends.at(control) + 1e-9) << r.dump();
+  }
+  ASSERT_FALSE(perControl.empty());
+  std::map<int, int> reported;
+  for (const auto& c : report["broken_in_control"]) {
+    reported[c["control"].get<int>()] = c["runs"].get<int>();
+    EXPECT_NEAR(c["end"].get<double>(), ends.at(c["control"].get<std::size_t>()), 1e-9);
+  }
+  EXPECT_EQ(reported, perControl);
+  EXPECT_NE(run.output.find("when         control "), std::string::npos) << run.output;
 
   // The same seed gives the same report, word for word.
   const CommandRun again = kautham(command);

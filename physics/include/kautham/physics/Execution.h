@@ -22,6 +22,9 @@ struct ExecutionResult {
   std::vector<double> finalState;  ///< the state at the end (or at the violation)
   /// The object that broke the rule (a layout body), when an object did
   std::optional<std::size_t> offendingObject;
+  /// The control during which the run broke a rule (an index into the plan's controls), when it
+  /// did: which move of a plan is fragile (a push that tips a can, a descent onto one).
+  std::optional<std::size_t> brokenInControl;
   /// A valid run that ended with the gripper where the goal asks, turned as it asks, but missed
   /// it: the movable objects in the free space between its fingers (WorkspaceGoal::poseReached;
   /// the pre-grasp is not clear).
