@@ -252,10 +252,12 @@ std::size_t findQuery(const core::Problem& problem, const std::string& name,
                            problem.file.filename().string() + " does not have");
 }
 
-/// Names and counts, the most counted first (by name among equals).
-std::vector<std::pair<std::string, std::size_t>> mostCountedFirst(
-    const std::map<std::string, std::size_t>& counts) {
-  std::vector<std::pair<std::string, std::size_t>> sorted(counts.begin(), counts.end());
+/// Keys (names, control indices) and counts, the most counted first (the smaller key among
+/// equals).
+template <typename Key>
+std::vector<std::pair<Key, std::size_t>> mostCountedFirst(
+    const std::map<Key, std::size_t>& counts) {
+  std::vector<std::pair<Key, std::size_t>> sorted(counts.begin(), counts.end());
   std::stable_sort(sorted.begin(), sorted.end(),
                    [](const auto& a, const auto& b) { return a.second > b.second; });
   return sorted;
@@ -293,9 +295,7 @@ std::vector<ControlWindow> controlWindows(const PlanControls& plan) {
 std::string describeBrokenControls(const std::map<std::size_t, std::size_t>& counts,
                                    const std::vector<ControlWindow>& windows) {
   constexpr std::size_t kShown = 5;
-  std::vector<std::pair<std::size_t, std::size_t>> sorted(counts.begin(), counts.end());
-  std::stable_sort(sorted.begin(), sorted.end(),
-                   [](const auto& a, const auto& b) { return a.second > b.second; });
+  const auto sorted = mostCountedFirst(counts);
   std::string text;
   for (std::size_t i = 0; i < std::min(sorted.size(), kShown); ++i) {
     const auto [control, runs] = sorted[i];
