@@ -498,8 +498,7 @@ int runValidate(const ValidateOptions& options) {
 
   const Interval ci = wilson(successes, options.runs);
   const double rate = static_cast<double>(successes) / static_cast<double>(options.runs);
-  double motion = 0.0;
-  for (const physics::ControlStep& c : plan.controls) motion += c.steps * plan.propagationStepSize;
+  const double motion = windows.empty() ? 0.0 : windows.back().end;
   fmt::print("problem      {} ({}), query {}\n", problem.name, problem.file.string(),
              problem.queries[query].name);
   fmt::print("plan         {}: {} controls, {:.2f} s of motion\n", options.plan,
