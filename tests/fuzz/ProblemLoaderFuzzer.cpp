@@ -7,20 +7,31 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <system_error>
 
 #include "kautham/core/InputError.h"
 #include "kautham/core/ProblemLoader.h"
 
 namespace {
 
-/// One scratch folder per process, beside which the repository's models are searched.
+/// One scratch folder per process, beside which the repository's models are searched; removed
+/// when the fuzzer exits (libFuzzer ends its runs with exit(), which runs static destructors), so
+/// that runs do not pile folders up in the temporary directory.
+struct ScratchFolder {
+  std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("kautham_fuzz_" + std::to_string(::getpid()));
+  ScratchFolder() { std::filesystem::create_directories(folder); }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+};
+
 const std::filesystem::path& scratchFile() {
-  static const std::filesystem::path file = [] {
-    const auto folder =
-        std::filesystem::temp_directory_path() / ("kautham_fuzz_" + std::to_string(::getpid()));
-    std::filesystem::create_directories(folder);
-    return folder / "problem.xml";
-  }();
+  static const ScratchFolder scratch;
+  static const std::filesystem::path file = scratch.folder / "problem.xml";
   return file;
 }
 
