@@ -488,6 +488,7 @@ def read_failures(folders):
                 "problem": key[0], "configuration": key[1], "plans": 0, "executions": 0,
                 "successes": 0, "failures": {k: 0 for k, _ in FAILURE_KINDS},
                 "free_space_not_clear": 0, "free_space_objects": {}, "goal_pose_missed": 0,
+                "off_pose_touching_nothing": 0, "off_pose_touching_unknown": False,
                 "rule_breakers": {}})
             try:
                 add_validation(g, report)
@@ -508,7 +509,13 @@ def add_validation(g, report):
     free = report.get("free_space_not_clear", {})
     g["free_space_not_clear"] += int(free.get("runs", 0))
     count_into(g["free_space_objects"], free.get("by_object", {}).items())
-    g["goal_pose_missed"] += int(report.get("goal_pose_missed", {}).get("runs", 0))
+    pose = report.get("goal_pose_missed", {})
+    g["goal_pose_missed"] += int(pose.get("runs", 0))
+    # Reports from before validate said what the robot touched there cannot be split.
+    if "touching_nothing" in pose:
+        g["off_pose_touching_nothing"] += int(pose["touching_nothing"])
+    elif int(pose.get("runs", 0)) > 0:
+        g["off_pose_touching_unknown"] = True
     count_into(g["rule_breakers"], ((r["object"], 1) for r in report.get("results", [])
                                     if r.get("violation", "none") != "none"
                                     and r.get("object")))
@@ -527,7 +534,8 @@ def most(counts, k=3):
 
 def failure_rows(groups):
     header = ["problem", "configuration", "plans", "executions", "success %", "goal missed %",
-              "free space not clear %", "in the free space", "gripper off the goal pose %"] + \
+              "free space not clear %", "in the free space", "gripper off the goal pose %",
+              "off the pose touching nothing %"] + \
         [f"{label} %" for kind, label in FAILURE_KINDS if kind != "goal_missed"] + \
         ["objects that broke a rule"]
     rows = []
@@ -540,7 +548,9 @@ def failure_rows(groups):
         rows.append([g["problem"], g["configuration"], str(g["plans"]), str(n),
                      share(g["successes"]), share(g["failures"]["goal_missed"]),
                      share(g["free_space_not_clear"]), most(g["free_space_objects"]),
-                     share(g["goal_pose_missed"])]
+                     share(g["goal_pose_missed"]),
+                     "—" if g["off_pose_touching_unknown"]
+                     else share(g["off_pose_touching_nothing"])]
                     + [share(g["failures"][kind]) for kind, _ in FAILURE_KINDS
                        if kind != "goal_missed"]
                     + [most(g["rule_breakers"])])
@@ -550,7 +560,10 @@ def failure_rows(groups):
 FAILURE_NOTE = ("Why the executions of the validated plans failed, as shares of all their "
                 "executions (`kautham validate`; unsolved runs have no executions). A goal "
                 "missed is the free space not clear at the end, the gripper off the goal pose, "
-                "or both, so those two columns may add up to more; \"in the free space\": the "
+                "or both, so those two columns may add up to more; \"off the pose touching "
+                "nothing\": the executions that ended off the goal pose with the robot touching "
+                "nothing there (put off its course earlier, not held up at the end; — where a "
+                "report is from before validate said so); \"in the free space\": the "
                 "objects found there most (executions); \"objects that broke a rule\": the "
                 "object named by each execution that broke one (tipped, moved the target, too "
                 "fast), most first.")

@@ -321,18 +321,24 @@ std::string describeBlockedFreeSpace(std::size_t runs,
 }
 
 /// Of the valid runs that ended off the goal pose, how many missed each part of it.
+/// And what the robot touched where it ended: what stopped it short, if anything did.
 struct PoseMisses {
   std::size_t runs = 0;
   std::size_t position = 0;
   std::size_t approach = 0;
   std::size_t level = 0;
+  std::map<std::string, std::size_t> touching;  ///< runs in which the robot touched each thing
+  std::size_t touchingNothing = 0;              ///< runs in which it touched nothing
 
-  void count(const physics::WorkspaceGoal::PoseMiss& miss) {
+  void count(const physics::ExecutionResult& run) {
+    const physics::WorkspaceGoal::PoseMiss& miss = run.poseMissed;
     if (!miss.any()) return;
     ++runs;
     position += miss.position;
     approach += miss.approach;
     level += miss.level;
+    touchingNothing += run.touchedOffThePose.empty();
+    for (const std::string& name : run.touchedOffThePose) ++touching[name];
   }
 };
 
@@ -358,8 +364,13 @@ std::string describePoseMisses(const PoseMisses& misses, const physics::GoalSpec
   if (misses.level)
     parts += fmt::format(", {} with the level axis tilted beyond the {:g} rad approach tolerance",
                          misses.level, spec.approachTolerance);
-  return fmt::format("the gripper off the goal pose in {} {}: {}", misses.runs,
-                     misses.runs == 1 ? "run" : "runs", parts.substr(2));
+  std::string touched;
+  for (const auto& [name, runs] : mostCountedFirst(misses.touching))
+    touched += fmt::format(", {} in {}", name, runs);
+  if (misses.touchingNothing > 0) touched += fmt::format(", nothing in {}", misses.touchingNothing);
+  return fmt::format("the gripper off the goal pose in {} {}: {}; the robot touching there {}",
+                     misses.runs, misses.runs == 1 ? "run" : "runs", parts.substr(2),
+                     touched.substr(2));
 }
 
 std::string describeUncertainty(const core::Problem& problem,
@@ -480,8 +491,11 @@ int runValidate(const ValidateOptions& options) {
       ++runsWithFreeSpaceNotClear;
       for (const std::string& name : r.leftInFreeSpace) ++leftInFreeSpace[name];
     }
-    if (r.poseMissed.any()) runJson["pose_missed"] = poseMissNames(r.poseMissed);
-    poseMisses.count(r.poseMissed);
+    if (r.poseMissed.any()) {
+      runJson["pose_missed"] = poseMissNames(r.poseMissed);
+      runJson["touching_off_the_pose"] = r.touchedOffThePose;
+    }
+    poseMisses.count(r);
     perRun.push_back(std::move(runJson));
     if (r.reachedGoal) {
       ++successes;
@@ -567,7 +581,9 @@ int runValidate(const ValidateOptions& options) {
          {{"runs", poseMisses.runs},
           {"position", poseMisses.position},
           {"approach", poseMisses.approach},
-          {"level", poseMisses.level}}},
+          {"level", poseMisses.level},
+          {"touching", poseMisses.touching},
+          {"touching_nothing", poseMisses.touchingNothing}}},
         {"mean_final_goal_distance", distanceSum / static_cast<double>(options.runs)},
         {"redrawn_starts", rejectedStarts},
         {"results", perRun},

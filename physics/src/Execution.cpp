@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
@@ -46,6 +48,18 @@ bool startIsPossible(PlanningContext& context, const WorldValidityChecker& check
   const bool valid = checker.check(start.data()) == Violation::None;
   start[flags] = 0.0;
   return !overlaps && valid;
+}
+
+/// What the robot touches in `state`: the objects' names, and kFixedObstacle.
+std::vector<std::string> touchedAt(PlanningContext& context, const std::vector<double>& state) {
+  World& world = context.world();
+  world.writeState(state.data());
+  const RobotTouches touches = world.robotTouches();
+  std::vector<std::string> names;
+  for (const int body : touches.bodies)
+    names.push_back(context.layout().bodies[static_cast<std::size_t>(body)].name);
+  if (touches.fixed) names.emplace_back(kFixedObstacle);
+  return names;
 }
 
 }  // namespace
@@ -123,6 +137,7 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       result.firstViolation == Violation::None && goal->reached(result.finalState.data());
   if (!result.reachedGoal && result.firstViolation == Violation::None) {
     result.poseMissed = goal->poseMiss(result.finalState.data());
+    if (result.poseMissed.any()) result.touchedOffThePose = touchedAt(context, result.finalState);
     if (goal->poseReached(result.finalState.data()))
       result.leftInFreeSpace = goal->freeSpaceOccupants(result.finalState.data());
   }

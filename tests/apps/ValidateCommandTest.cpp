@@ -455,6 +455,19 @@ TEST_F(ValidateCommandTest, SaysWhatTheGripperMissedOfTheGoalPose) {
   EXPECT_EQ(sum["approach"], valid);
   EXPECT_EQ(sum["position"], position);
   EXPECT_EQ(sum["level"], 0);
+  // What the robot touched where each run ended (the arm rests on can3 in some, nothing touches
+  // it in others): said run by run, and counted in sum.
+  int touchingNothing = 0;
+  std::map<std::string, int> touching;
+  for (const auto& r : report["results"])
+    if (r.contains("pose_missed")) {
+      const nlohmann::json& touched = r.at("touching_off_the_pose");
+      touchingNothing += touched.empty();
+      for (const auto& name : touched) ++touching[name.get<std::string>()];
+    }
+  EXPECT_EQ(sum["touching_nothing"], touchingNothing);
+  EXPECT_EQ(sum["touching"], nlohmann::json(touching));
+  EXPECT_GT(touchingNothing, 0) << sum;
   // Every goal miss is one or the other: the free space is judged only where the pose is reached.
   EXPECT_EQ(report["failures"]["goal_missed"],
             report["free_space_not_clear"]["runs"].get<int>() + sum["runs"].get<int>());
@@ -463,6 +476,10 @@ TEST_F(ValidateCommandTest, SaysWhatTheGripperMissedOfTheGoalPose) {
       << run.output;
   EXPECT_NE(run.output.find(std::to_string(valid) + " turned beyond the 0.15 rad approach "
                                                     "tolerance"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("; the robot touching there "), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("nothing in " + std::to_string(touchingNothing) + ")"),
             std::string::npos)
       << run.output;
 }

@@ -18,8 +18,9 @@ pusher_free, RRT (limit 10 s): no object count in the name, OMPL's properties on
   times 0.5 0.7 0.9 10 10 -> median 0.9, mean 4.42; no execution success.
 A bench output folder (logs/ and plans/) with two validation reports of kuka_clutter_10's pKPU
   plans, 10 executions each: 6 and 8 successes (70 %); goal missed 3 + 1 (20 %), the free space
-  not clear 2 (can20) + 1 (can23) (15 %), the gripper off the goal pose 2 (10 %), a can tipped 1
-  (5 %), the target touched 1 (5 %); the objects named by a broken rule can15 and glass.
+  not clear 2 (can20) + 1 (can23) (15 %), the gripper off the goal pose 2 (10 %), 1 of them
+  touching nothing there (5 %), a can tipped 1 (5 %), the target touched 1 (5 %); the objects
+  named by a broken rule can15 and glass.
 
 Run: /usr/bin/python3 tests/scripts/test_bench_report.py (CTest: bench_report).
 """
@@ -177,17 +178,19 @@ class BadInput(unittest.TestCase):
                 self.assertIn(message, result.stderr, path)
 
 
-def validation(runs, successes, failures, free, free_objects, pose_missed, breakers):
+def validation(runs, successes, failures, free, free_objects, pose_missed, breakers,
+               touching_nothing=None):
     results = [{"violation": v, "object": o, "reached_goal": False} for v, o in breakers]
     results += [{"violation": "none", "reached_goal": True}] * (runs - len(results))
     kinds = {"goal_missed": 0, "object_fell_or_tipped": 0, "target_touched": 0, "too_fast": 0,
              "other": 0}
     kinds.update(failures)
+    pose = {"runs": pose_missed, "position": pose_missed, "approach": 0, "level": 0}
+    if touching_nothing is not None:
+        pose.update(touching={}, touching_nothing=touching_nothing)
     return {"format": "kautham-validation", "runs": runs, "successes": successes,
             "failures": kinds, "free_space_not_clear": {"runs": free, "by_object": free_objects},
-            "goal_pose_missed": {"runs": pose_missed, "position": pose_missed, "approach": 0,
-                                 "level": 0},
-            "results": results}
+            "goal_pose_missed": pose, "results": results}
 
 
 class FromBenchFolder(unittest.TestCase):
@@ -203,9 +206,9 @@ class FromBenchFolder(unittest.TestCase):
         self.plans = os.path.join(self.bench, "plans", "kuka_clutter_10", "pKPU")
         os.makedirs(self.plans)
         reports = [validation(10, 6, {"goal_missed": 3, "object_fell_or_tipped": 1}, 2,
-                              {"can20": 2}, 2, [("object tilted", "can15")]),
+                              {"can20": 2}, 2, [("object tilted", "can15")], touching_nothing=1),
                    validation(10, 8, {"goal_missed": 1, "target_touched": 1}, 1, {"can23": 1},
-                              0, [("target moved", "glass")])]
+                              0, [("target moved", "glass")], touching_nothing=0)]
         for r, content in enumerate(reports):
             with open(os.path.join(self.plans, f"run-{r}.validation.json"), "w") as f:
                 json.dump(content, f)
@@ -220,13 +223,22 @@ class FromBenchFolder(unittest.TestCase):
         with open(os.path.join(out, "failures.md")) as f:
             text = f.read()
         self.assertIn("| kuka_clutter_10 | pKPU | 2 | 20 | 70.0 | 20.0 | 15.0 | can20 2, can23 1 | "
-                      "10.0 | 5.0 | 5.0 | 0.0 | 0.0 | can15 1, glass 1 |", text)
+                      "10.0 | 5.0 | 5.0 | 5.0 | 0.0 | 0.0 | can15 1, glass 1 |", text)
         with open(os.path.join(out, "summary.json")) as f:
             failures = json.load(f)["failures"]
         self.assertEqual(len(failures), 1)
         self.assertEqual(failures[0]["free_space_objects"], {"can20": 2, "can23": 1})
         with open(os.path.join(out, "index.html")) as f:
             self.assertIn("Why the executions failed", f.read())
+
+    def test_off_the_pose_unsplit_where_a_report_does_not_say_what_was_touched(self):
+        # A report from before validate said what the robot touched where it ended.
+        with open(os.path.join(self.plans, "run-2.validation.json"), "w") as f:
+            json.dump(validation(10, 9, {"goal_missed": 1}, 0, {}, 1, []), f)
+        result = report(self.bench, "--no-figures")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(self.bench, "report", "failures.md")) as f:
+            self.assertIn("| can20 2, can23 1 | 10.0 | — | 3.3 |", f.read())
 
     def test_a_broken_validation_report_is_named(self):
         broken = os.path.join(self.plans, "run-2.validation.json")

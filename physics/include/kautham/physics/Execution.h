@@ -13,6 +13,9 @@
 namespace kautham::physics {
 
 /// One open-loop execution of a plan in a sampled world (one particle of the whole plan).
+/// Stands for the fixed obstacles among ExecutionResult::touchedOffThePose.
+inline constexpr const char* kFixedObstacle = "a fixed obstacle";
+
 struct ExecutionResult {
   bool reachedGoal = false;  ///< valid all along and ends inside the goal region
   Violation firstViolation = Violation::None;
@@ -31,6 +34,9 @@ struct ExecutionResult {
   std::vector<std::string> leftInFreeSpace;
   /// A valid run that ended off the goal pose: what it missed (for a region's goal).
   WorkspaceGoal::PoseMiss poseMissed;
+  /// And what the robot touches there (the objects' names, and kFixedObstacle): what may have
+  /// stopped it short. Empty: nothing touches it, its controls' noise took it off the pose.
+  std::vector<std::string> touchedOffThePose;
   ContactParameters contact;       ///< the contact parameters of the run
   std::size_t rejectedStarts = 0;  ///< sampled starts redrawn because things interpenetrated
 };
