@@ -10,10 +10,12 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include "Commands.h"
@@ -290,10 +292,11 @@ std::vector<ControlWindow> controlWindows(const PlanControls& plan) {
   return windows;
 }
 
-/// "control 12 (2.60-2.85 s) in 31 runs, control 11 (2.40-2.60 s) in 14, ...": the controls
-/// during which runs broke a rule, most often first (the earlier among equals), at most five.
-std::string describeBrokenControls(const std::map<std::size_t, std::size_t>& counts,
-                                   const std::vector<ControlWindow>& windows) {
+/// "control 12 (2.60-2.85 s) in 31 runs, control 11 (2.40-2.60 s) in 14, ... (`why`)": in how
+/// many runs each control was the one (where a rule broke, say), most often first (the earlier
+/// among equals), at most five.
+std::string describeControls(const std::map<std::size_t, std::size_t>& counts,
+                             const std::vector<ControlWindow>& windows, const std::string& why) {
   constexpr std::size_t kShown = 5;
   const auto sorted = mostCountedFirst(counts);
   std::string text;
@@ -304,8 +307,76 @@ std::string describeBrokenControls(const std::map<std::size_t, std::size_t>& cou
                         i ? "" : (runs == 1 ? " run" : " runs"));
   }
   if (sorted.size() > kShown) text += fmt::format(", {} more", sorted.size() - kShown);
-  return text + " (the control during which the rule broke)";
+  return text + " (" + why + ")";
 }
+
+/// [{"control": 12, "start": 2.6, "end": 2.85, "runs": 31}, ...], in the controls' order.
+json controlsJson(const std::map<std::size_t, std::size_t>& counts,
+                  const std::vector<ControlWindow>& windows) {
+  json byControl = json::array();
+  for (const auto& [control, runs] : counts)
+    byControl.push_back({{"control", control},
+                         {"start", windows[control].start},
+                         {"end", windows[control].end},
+                         {"runs", runs}});
+  return byControl;
+}
+
+/// The control in which a run's goal link moved furthest from the nominal execution's: where
+/// the distance between the two, control end by control end, grew most (none without a
+/// control run in full). The robot starts where the nominal does.
+std::optional<std::size_t> strayedIn(const std::vector<Eigen::Vector3d>& run,
+                                     const std::vector<Eigen::Vector3d>& nominal) {
+  std::optional<std::size_t> strayed;
+  double apartBefore = 0.0;
+  double mostGrowth = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < std::min(run.size(), nominal.size()); ++c) {
+    const double apart = (run[c] - nominal[c]).norm();
+    if (apart - apartBefore > mostGrowth) {
+      mostGrowth = apart - apartBefore;
+      strayed = c;
+    }
+    apartBefore = apart;
+  }
+  return strayed;
+}
+
+/// Of the runs that ended off the goal pose: the control in which each strayed furthest from
+/// the nominal execution (strayedIn), and what the robot touched during that control.
+struct Strays {
+  std::map<std::size_t, std::size_t> byControl;  ///< runs that strayed in each control
+  std::map<std::string, std::size_t> touching;   ///< runs whose robot touched each object then
+  std::size_t touchingNothing = 0;               ///< runs whose robot touched nothing then
+
+  /// Counts `run` (off the goal pose); the control it strayed in, and the objects touched then.
+  std::optional<std::pair<std::size_t, std::vector<std::string>>> count(
+      const physics::ExecutionResult& run, const physics::ExecutionResult& nominal,
+      const physics::WorldLayout& layout) {
+    const std::optional<std::size_t> control =
+        strayedIn(run.linkAfterControl, nominal.linkAfterControl);
+    if (!control) return std::nullopt;
+    ++byControl[*control];
+    std::vector<std::string> names;
+    for (const int body : run.touchedInControl.at(*control))
+      names.push_back(layout.bodies.at(static_cast<std::size_t>(body)).name);
+    touchingNothing += names.empty();
+    for (const std::string& name : names) ++touching[name];
+    return std::make_pair(*control, names);
+  }
+
+  /// "control 21 (4.65-4.90 s) in 28 runs, ... (...); the robot touching can1 in 25, nothing
+  /// in 3 during it"
+  std::string describe(const std::vector<ControlWindow>& windows) const {
+    std::string touched;
+    for (const auto& [name, runs] : mostCountedFirst(touching))
+      touched += fmt::format(", {} in {}", name, runs);
+    if (touchingNothing > 0) touched += fmt::format(", nothing in {}", touchingNothing);
+    return describeControls(byControl, windows,
+                            "of the runs off the goal pose, the control in which the gripper "
+                            "moved furthest from the nominal execution's") +
+           "; the robot touching " + touched.substr(2) + " during it";
+  }
+};
 
 /// "the free space not clear in 30 runs: can1 in 20, can21 in 12": of the runs that ended with
 /// the gripper where the goal asks, how many had objects between the fingers, and which, most
@@ -460,7 +531,11 @@ int runValidate(const ValidateOptions& options) {
   std::map<physics::Violation, std::size_t> violations;
   std::map<std::string, std::size_t> offenders;       ///< runs in which each object broke a rule
   std::map<std::size_t, std::size_t> brokenControls;  ///< runs that broke a rule in each control
+  Strays strays;
   const std::vector<ControlWindow> windows = controlWindows(plan);
+  std::mt19937_64 nominalRng(core::runSeed(options.seed, 0));
+  const physics::ExecutionResult nominal =
+      physics::execute(context, plan.controls, nominalRng, false);
   /// Valid runs that ended with the gripper where the goal asks, missing it only because the
   /// free space between the fingers was not clear; and in how many of them each object was.
   std::size_t runsWithFreeSpaceNotClear = 0;
@@ -494,6 +569,10 @@ int runValidate(const ValidateOptions& options) {
     if (r.poseMissed.any()) {
       runJson["pose_missed"] = poseMissNames(r.poseMissed);
       runJson["touching_off_the_pose"] = r.touchedOffThePose;
+      if (const auto strayed = strays.count(r, nominal, context.layout())) {
+        runJson["strayed_in_control"] = strayed->first;
+        runJson["touched_while_straying"] = strayed->second;
+      }
     }
     poseMisses.count(r);
     perRun.push_back(std::move(runJson));
@@ -541,7 +620,9 @@ int runValidate(const ValidateOptions& options) {
   }
   if (!offenders.empty()) fmt::print("objects      {}\n", describeOffenders(offenders));
   if (!brokenControls.empty())
-    fmt::print("when         {}\n", describeBrokenControls(brokenControls, windows));
+    fmt::print("when         {}\n", describeControls(brokenControls, windows,
+                                                     "the control during which the rule broke"));
+  if (!strays.byControl.empty()) fmt::print("strayed      {}\n", strays.describe(windows));
   fmt::print("goal distance {:.1f} cm on average at the end\n",
              100.0 * distanceSum / static_cast<double>(options.runs));
   if (rejectedStarts > 0)
@@ -553,12 +634,6 @@ int runValidate(const ValidateOptions& options) {
     json byViolation = json::object();
     for (const auto& [violation, count] : violations)
       byViolation[physics::toString(violation)] = count;
-    json byControl = json::array();
-    for (const auto& [control, runs] : brokenControls)
-      byControl.push_back({{"control", control},
-                           {"start", windows[control].start},
-                           {"end", windows[control].end},
-                           {"runs", runs}});
     const json report = {
         {"format", "kautham-validation"},
         {"problem", {{"name", problem.name}, {"file", problem.file.string()}}},
@@ -574,7 +649,9 @@ int runValidate(const ValidateOptions& options) {
          {{"method", "wilson"}, {"level", 0.95}, {"low", ci.low}, {"high", ci.high}}},
         {"failures", byReason},
         {"violations", byViolation},
-        {"broken_in_control", byControl},
+        {"broken_in_control", controlsJson(brokenControls, windows)},
+        {"strayed_in_control", controlsJson(strays.byControl, windows)},
+        {"strayed_touching", {{"by_object", strays.touching}, {"nothing", strays.touchingNothing}}},
         {"free_space_not_clear",
          {{"runs", runsWithFreeSpaceNotClear}, {"by_object", leftInFreeSpace}}},
         {"goal_pose_missed",

@@ -123,7 +123,11 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
       result.time += stepSize;
       result.firstViolation = checker->check(values, checker->targetStart(), world.held());
     }
-    if (result.firstViolation != Violation::None) result.brokenInControl = c;
+    result.touchedInControl.push_back(world.takeTouchedBodies());
+    if (result.firstViolation != Violation::None)
+      result.brokenInControl = c;
+    else
+      result.linkAfterControl.push_back(context.layout().goalLinkPosition(values));
   }
   if (result.firstViolation != Violation::None)
     result.offendingObject = checker->offendingObject(values, checker->targetStart(), world.held());

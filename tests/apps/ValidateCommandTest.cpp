@@ -468,6 +468,33 @@ TEST_F(ValidateCommandTest, SaysWhatTheGripperMissedOfTheGoalPose) {
   EXPECT_EQ(sum["touching_nothing"], touchingNothing);
   EXPECT_EQ(sum["touching"], nlohmann::json(touching));
   EXPECT_GT(touchingNothing, 0) << sum;
+  // Each of those runs names the control in which its gripper strayed furthest from the nominal
+  // execution's (one of the plan's), and what the robot touched during it; counted in sum.
+  std::map<int, int> strayedIn;
+  std::map<std::string, int> touchedWhileStraying;
+  int strayedTouchingNothing = 0;
+  const int controls =
+      static_cast<int>(nlohmann::json::parse(test::readFile(kukaPlan)).at("controls").size());
+  for (const auto& r : report["results"])
+    if (r.contains("pose_missed")) {
+      ASSERT_TRUE(r.contains("strayed_in_control")) << r;
+      const int control = r["strayed_in_control"];
+      EXPECT_GE(control, 0);
+      EXPECT_LT(control, controls);
+      ++strayedIn[control];
+      const nlohmann::json& touched = r.at("touched_while_straying");
+      strayedTouchingNothing += touched.empty();
+      for (const auto& name : touched) ++touchedWhileStraying[name.get<std::string>()];
+    }
+  int strayedRuns = 0;
+  for (const auto& entry : report["strayed_in_control"]) {
+    EXPECT_EQ(entry["runs"], strayedIn[entry["control"].get<int>()]) << entry;
+    strayedRuns += entry["runs"].get<int>();
+  }
+  EXPECT_EQ(strayedRuns, valid);
+  EXPECT_EQ(report["strayed_touching"]["by_object"], nlohmann::json(touchedWhileStraying));
+  EXPECT_EQ(report["strayed_touching"]["nothing"], strayedTouchingNothing);
+  EXPECT_NE(run.output.find("\nstrayed      control "), std::string::npos) << run.output;
   // Every goal miss is one or the other: the free space is judged only where the pose is reached.
   EXPECT_EQ(report["failures"]["goal_missed"],
             report["free_space_not_clear"]["runs"].get<int>() + sum["runs"].get<int>());

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "kautham/physics/ContactParameters.h"
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/physics/Replay.h"
@@ -37,6 +39,12 @@ struct ExecutionResult {
   /// And what the robot touches there (the objects' names, and kFixedObstacle): what may have
   /// stopped it short. Empty: nothing touches it, its controls' noise took it off the pose.
   std::vector<std::string> touchedOffThePose;
+  /// Where the goal link was at the end of each control run in full (compared with the nominal
+  /// execution's, which control put a run off its course).
+  std::vector<Eigen::Vector3d> linkAfterControl;
+  /// What the robot touched during each control (layout bodies, robot bodies excluded), up to
+  /// the one that broke a rule: what may have put it off its course there.
+  std::vector<std::vector<int>> touchedInControl;
   ContactParameters contact;       ///< the contact parameters of the run
   std::size_t rejectedStarts = 0;  ///< sampled starts redrawn because things interpenetrated
 };
