@@ -391,8 +391,8 @@ std::string describeBlockedFreeSpace(std::size_t runs,
                      byObject);
 }
 
-/// Of the valid runs that ended off the goal pose, how many missed each part of it.
-/// And what the robot touched where it ended: what stopped it short, if anything did.
+/// Of the valid runs that ended off the goal pose, how many missed each part of it, and what
+/// the robot touched where each ended (what held it up short, if anything did).
 struct PoseMisses {
   std::size_t runs = 0;
   std::size_t position = 0;

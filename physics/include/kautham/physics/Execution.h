@@ -14,10 +14,10 @@
 
 namespace kautham::physics {
 
-/// One open-loop execution of a plan in a sampled world (one particle of the whole plan).
 /// Stands for the fixed obstacles among ExecutionResult::touchedOffThePose.
 inline constexpr const char* kFixedObstacle = "a fixed obstacle";
 
+/// One open-loop execution of a plan in a sampled world (one particle of the whole plan).
 struct ExecutionResult {
   bool reachedGoal = false;  ///< valid all along and ends inside the goal region
   Violation firstViolation = Violation::None;
@@ -37,7 +37,7 @@ struct ExecutionResult {
   /// A valid run that ended off the goal pose: what it missed (for a region's goal).
   WorkspaceGoal::PoseMiss poseMissed;
   /// And what the robot touches there (the objects' names, and kFixedObstacle): what may have
-  /// stopped it short. Empty: nothing touches it, its controls' noise took it off the pose.
+  /// stopped it short. Empty: nothing holds it there; it was put off its course earlier.
   std::vector<std::string> touchedOffThePose;
   /// Where the goal link was at the end of each control run in full (compared with the nominal
   /// execution's, which control put a run off its course).
