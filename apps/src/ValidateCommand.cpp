@@ -341,12 +341,31 @@ std::optional<std::size_t> strayedIn(const std::vector<Eigen::Vector3d>& run,
   return strayed;
 }
 
+/// What the robot touched in a number of runs (at some moment of each): runs per object, and
+/// runs in which it touched nothing.
+struct Touches {
+  std::map<std::string, std::size_t> byObject;
+  std::size_t nothing = 0;
+
+  void add(const std::vector<std::string>& touched) {
+    nothing += touched.empty();
+    for (const std::string& name : touched) ++byObject[name];
+  }
+  /// "can1 in 25, can5 in 2, nothing in 3": most often first.
+  std::string describe() const {
+    std::string text;
+    for (const auto& [name, runs] : mostCountedFirst(byObject))
+      text += fmt::format(", {} in {}", name, runs);
+    if (nothing > 0) text += fmt::format(", nothing in {}", nothing);
+    return text.empty() ? text : text.substr(2);
+  }
+};
+
 /// Of the runs that ended off the goal pose: the control in which each strayed furthest from
 /// the nominal execution (strayedIn), and what the robot touched during that control.
 struct Strays {
   std::map<std::size_t, std::size_t> byControl;  ///< runs that strayed in each control
-  std::map<std::string, std::size_t> touching;   ///< runs whose robot touched each object then
-  std::size_t touchingNothing = 0;               ///< runs whose robot touched nothing then
+  Touches touched;                               ///< what the robot touched then
 
   /// Counts `run` (off the goal pose); the control it strayed in, and the objects touched then.
   std::optional<std::pair<std::size_t, std::vector<std::string>>> count(
@@ -359,22 +378,17 @@ struct Strays {
     std::vector<std::string> names;
     for (const int body : run.touchedInControl.at(*control))
       names.push_back(layout.bodies.at(static_cast<std::size_t>(body)).name);
-    touchingNothing += names.empty();
-    for (const std::string& name : names) ++touching[name];
+    touched.add(names);
     return std::make_pair(*control, names);
   }
 
   /// "control 21 (4.65-4.90 s) in 28 runs, ... (...); the robot touching can1 in 25, nothing
   /// in 3 during it"
   std::string describe(const std::vector<ControlWindow>& windows) const {
-    std::string touched;
-    for (const auto& [name, runs] : mostCountedFirst(touching))
-      touched += fmt::format(", {} in {}", name, runs);
-    if (touchingNothing > 0) touched += fmt::format(", nothing in {}", touchingNothing);
     return describeControls(byControl, windows,
                             "of the runs off the goal pose, the control in which the gripper "
                             "moved furthest from the nominal execution's") +
-           "; the robot touching " + touched.substr(2) + " during it";
+           "; the robot touching " + touched.describe() + " during it";
   }
 };
 
@@ -398,8 +412,7 @@ struct PoseMisses {
   std::size_t position = 0;
   std::size_t approach = 0;
   std::size_t level = 0;
-  std::map<std::string, std::size_t> touching;  ///< runs in which the robot touched each thing
-  std::size_t touchingNothing = 0;              ///< runs in which it touched nothing
+  Touches touchedThere;  ///< what the robot touched where each run ended
 
   void count(const physics::ExecutionResult& run) {
     const physics::WorkspaceGoal::PoseMiss& miss = run.poseMissed;
@@ -408,8 +421,7 @@ struct PoseMisses {
     position += miss.position;
     approach += miss.approach;
     level += miss.level;
-    touchingNothing += run.touchedOffThePose.empty();
-    for (const std::string& name : run.touchedOffThePose) ++touching[name];
+    touchedThere.add(run.touchedOffThePose);
   }
 };
 
@@ -435,13 +447,9 @@ std::string describePoseMisses(const PoseMisses& misses, const physics::GoalSpec
   if (misses.level)
     parts += fmt::format(", {} with the level axis tilted beyond the {:g} rad approach tolerance",
                          misses.level, spec.approachTolerance);
-  std::string touched;
-  for (const auto& [name, runs] : mostCountedFirst(misses.touching))
-    touched += fmt::format(", {} in {}", name, runs);
-  if (misses.touchingNothing > 0) touched += fmt::format(", nothing in {}", misses.touchingNothing);
   return fmt::format("the gripper off the goal pose in {} {}: {}; the robot touching there {}",
                      misses.runs, misses.runs == 1 ? "run" : "runs", parts.substr(2),
-                     touched.substr(2));
+                     misses.touchedThere.describe());
 }
 
 std::string describeUncertainty(const core::Problem& problem,
@@ -651,7 +659,8 @@ int runValidate(const ValidateOptions& options) {
         {"violations", byViolation},
         {"broken_in_control", controlsJson(brokenControls, windows)},
         {"strayed_in_control", controlsJson(strays.byControl, windows)},
-        {"strayed_touching", {{"by_object", strays.touching}, {"nothing", strays.touchingNothing}}},
+        {"strayed_touching",
+         {{"by_object", strays.touched.byObject}, {"nothing", strays.touched.nothing}}},
         {"free_space_not_clear",
          {{"runs", runsWithFreeSpaceNotClear}, {"by_object", leftInFreeSpace}}},
         {"goal_pose_missed",
@@ -659,8 +668,8 @@ int runValidate(const ValidateOptions& options) {
           {"position", poseMisses.position},
           {"approach", poseMisses.approach},
           {"level", poseMisses.level},
-          {"touching", poseMisses.touching},
-          {"touching_nothing", poseMisses.touchingNothing}}},
+          {"touching", poseMisses.touchedThere.byObject},
+          {"touching_nothing", poseMisses.touchedThere.nothing}}},
         {"mean_final_goal_distance", distanceSum / static_cast<double>(options.runs)},
         {"redrawn_starts", rejectedStarts},
         {"results", perRun},
