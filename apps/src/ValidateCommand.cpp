@@ -265,6 +265,14 @@ std::vector<std::pair<Key, std::size_t>> mostCountedFirst(
   return sorted;
 }
 
+/// "can1 in 20, can21 in 12": runs per object, most often first.
+std::string runsPerObject(const std::map<std::string, std::size_t>& counts) {
+  std::string text;
+  for (const auto& [name, runs] : mostCountedFirst(counts))
+    text += fmt::format("{}{} in {}", text.empty() ? "" : ", ", name, runs);
+  return text;
+}
+
 /// "can3 in 5 runs, cylinder in 2, ...": which objects broke a rule, most often first.
 std::string describeOffenders(const std::map<std::string, std::size_t>& offenders) {
   const auto sorted = mostCountedFirst(offenders);
@@ -353,11 +361,9 @@ struct Touches {
   }
   /// "can1 in 25, can5 in 2, nothing in 3": most often first.
   std::string describe() const {
-    std::string text;
-    for (const auto& [name, runs] : mostCountedFirst(byObject))
-      text += fmt::format(", {} in {}", name, runs);
-    if (nothing > 0) text += fmt::format(", nothing in {}", nothing);
-    return text.empty() ? text : text.substr(2);
+    const std::string text = runsPerObject(byObject);
+    if (nothing == 0) return text;
+    return text + fmt::format("{}nothing in {}", text.empty() ? "" : ", ", nothing);
   }
 };
 
@@ -397,12 +403,8 @@ struct Strays {
 /// often first.
 std::string describeBlockedFreeSpace(std::size_t runs,
                                      const std::map<std::string, std::size_t>& objects) {
-  const auto sorted = mostCountedFirst(objects);
-  std::string byObject;
-  for (std::size_t i = 0; i < sorted.size(); ++i)
-    byObject += fmt::format("{}{} in {}", i ? ", " : "", sorted[i].first, sorted[i].second);
   return fmt::format("the free space not clear in {} {}: {}", runs, runs == 1 ? "run" : "runs",
-                     byObject);
+                     runsPerObject(objects));
 }
 
 /// Of the valid runs that ended off the goal pose, how many missed each part of it, and what
