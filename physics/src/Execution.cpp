@@ -129,6 +129,14 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
     else
       result.linkAfterControl.push_back(context.layout().goalLinkPosition(values));
   }
+  if (result.firstViolation == Violation::None && !controls.empty()) {
+    addFinalContacts(world, values);
+    result.firstViolation = checker->check(values, checker->targetStart(), world.held());
+    if (result.firstViolation != Violation::None) {
+      result.brokenInControl = controls.size() - 1;
+      result.linkAfterControl.pop_back();  // kept only for controls run in full and valid
+    }
+  }
   if (result.firstViolation != Violation::None)
     result.offendingObject = checker->offendingObject(values, checker->targetStart(), world.held());
   world.release();

@@ -32,12 +32,22 @@ void applyGripperAction(World& world, const ControlStep& step, const double* sta
   world.attach(body, kGraspReach);
 }
 
+void addFinalContacts(World& world, double* state) {
+  const WorldLayout& layout = world.layout();
+  const RobotTouches touches =
+      world.robotTouches(world.held() ? static_cast<int>(*world.held()) : -1);
+  unsigned flags = layout.flags(state);
+  if (touches.fixed) flags |= kRobotTouchedFixed;
+  if (touches.target) flags |= kRobotTouchedTarget;
+  state[layout.flagsIndex()] = flags;
+}
+
 ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& controls) {
   const auto& si = context.spaceInformation();
   const double stepSize = si->getPropagationStepSize();
   ompl::base::State* current = si->allocState();
   ompl::base::State* next = si->allocState();
-  const double* values = WorldStateSpace::values(current);
+  double* values = WorldStateSpace::values(current);
   std::copy(context.startState().begin(), context.startState().end(),
             WorldStateSpace::values(current));
   ompl::control::Control* control = si->allocControl();
@@ -63,6 +73,12 @@ ReplayResult replay(PlanningContext& context, const std::vector<ControlStep>& co
                                violation, world.takeTouchedBodies()});
       result.firstViolation = violation;
     }
+  }
+  if (result.firstViolation == Violation::None && result.frames.size() > 1) {
+    ReplayFrame& last = result.frames.back();
+    addFinalContacts(world, last.state.data());
+    last.violation = checker.check(last.state.data(), checker.targetStart(), world.held());
+    result.firstViolation = last.violation;
   }
   world.release();
   si->freeControl(control);

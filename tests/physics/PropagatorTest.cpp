@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "kautham/physics/Execution.h"
 #include "kautham/physics/Replay.h"
 #include "physics/PhysicsTestSupport.h"
 
@@ -99,6 +100,26 @@ TEST(ReplayTest, ReplayStopsAtTheFirstViolation) {
   EXPECT_EQ(result.firstViolation, Violation::RobotTouchedFixed);
   EXPECT_LT(result.frames.size(), 41u);
   EXPECT_FALSE(result.reachedGoal);
+}
+
+TEST(ReplayTest, ARunThatEndsTouchingAFixedObstacleHasTouchedIt) {
+  ContextFixture scene("tests/data/pusher_wall.xml");
+  const ReplayResult intoTheWall = replay(scene.context, {{{0.0, 1.0, 0.0}, 40}});
+  ASSERT_EQ(intoTheWall.firstViolation, Violation::RobotTouchedFixed);
+  // The step to the violating frame started from the one before, already touching the wall.
+  const auto touching = static_cast<unsigned>(intoTheWall.frames.size() - 2);
+  ASSERT_GT(touching, 1u);
+  const std::vector<ControlStep> endingThere = {{{0.0, 1.0, 0.0}, touching}};
+  EXPECT_EQ(replay(scene.context, endingThere).firstViolation, Violation::RobotTouchedFixed);
+  std::mt19937_64 rng(1);
+  const ExecutionResult run = execute(scene.context, endingThere, rng, false);
+  EXPECT_EQ(run.firstViolation, Violation::RobotTouchedFixed);
+  EXPECT_EQ(run.brokenInControl, std::optional<std::size_t>(0));
+  EXPECT_TRUE(run.linkAfterControl.empty());
+  // One step short of the wall, the run ends clear of it.
+  const std::vector<ControlStep> short1 = {{{0.0, 1.0, 0.0}, touching - 1}};
+  EXPECT_EQ(replay(scene.context, short1).firstViolation, Violation::None);
+  EXPECT_EQ(execute(scene.context, short1, rng, false).firstViolation, Violation::None);
 }
 
 }  // namespace

@@ -26,6 +26,12 @@ struct ControlStep {
 /// is held and the plan runs on without it, as a real gripper that closes on air.
 void applyGripperAction(World& world, const ControlStep& step, const double* state);
 
+/// Adds to `state`'s contact flags whether the robot touches a fixed obstacle or the target
+/// where a run ends (the world in that state). A step records the contacts it starts from, so
+/// the last state's would be judged only by a step that never comes: a run that ends with a
+/// finger on the target has touched it.
+void addFinalContacts(World& world, double* state);
+
 /// The world after each propagation step of a replay (frame 0 is the start state).
 struct ReplayFrame {
   double time = 0.0;
