@@ -14,6 +14,17 @@ void FailureTally::addDisplacement(std::size_t body) {
   ++total_;
 }
 
+std::vector<FailureTally::Entry> FailureTally::entries() const {
+  std::vector<Entry> result;
+  for (const auto& [key, count] : counts_) result.push_back({key.first, key.second, count});
+  return result;
+}
+
+void FailureTally::add(const Entry& entry) {
+  counts_[{entry.violation, entry.body}] += entry.count;
+  total_ += entry.count;
+}
+
 std::vector<FailureCount> FailureTally::counts(const physics::WorldLayout& layout) const {
   std::vector<FailureCount> result;
   for (const auto& [key, count] : counts_) {

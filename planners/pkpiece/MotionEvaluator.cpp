@@ -137,6 +137,13 @@ void MotionEvaluator::resetCounts() {
   failures_ = FailureTally{};
 }
 
+void MotionEvaluator::addCounts(std::uint64_t particles, std::uint64_t certainEarly,
+                                const FailureTally& failures) {
+  particleCount_ += particles;
+  certainEarly_ += certainEarly;
+  for (const FailureTally::Entry& entry : failures.entries()) failures_.add(entry);
+}
+
 void MotionEvaluator::tallyLastFailure(const ParticleJob& job, const ParticleVerdict& verdict) {
   const double* end = verdict.ends.back().data();
   if (!verdict.endValid.back()) {

@@ -12,6 +12,7 @@
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/datastructures/PDF.h>
 
+#include "PKpieceMotion.h"
 #include "kautham/physics/WorldStateSpace.h"
 #include "kautham/planners/BeliefVertex.h"
 
@@ -27,25 +28,6 @@ constexpr std::size_t kNearestKept = 30;  // motions nearest the goal kept for t
 // for the search to count as getting on (restartAfter).
 constexpr double kProgress = 0.01;
 }  // namespace
-
-struct PKpiece::Motion {
-  ompl::base::State* state = nullptr;  ///< the state at the motion's end
-  std::vector<double> control;
-  unsigned steps = 0;
-  Motion* parent = nullptr;
-  double belief = 1.0;      ///< b of the candidate it came from
-  double pathBelief = 1.0;  ///< product of the candidates' beliefs from the root to here
-  std::shared_ptr<const ObjectPoseBelief> poses;
-  std::shared_ptr<const RobotSpread> robotSpread;  ///< null: particles start as the state
-  unsigned expansion = 0;  ///< the iteration that added it: its pieces share the number
-  double goalDistance = 0.0;
-  CellData* cell = nullptr;
-  bool reachesGoal = false;  ///< ends a plan estimated to succeed often enough (goalConfidence)
-  /// With reachesGoal: that estimate, the path belief to its parent times the fraction of its
-  /// (confirming) particles that end valid in the goal; once verified (verifyRuns), the
-  /// fraction of the plan's sampled executions that succeeded.
-  double successEstimate = 0.0;
-};
 
 struct PKpiece::CellData {
   std::vector<Motion*> motions;  ///< oldest first
@@ -96,7 +78,8 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                                  settings.approachSpeed, settings.goalShift, settings.moveSpeed}),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
-      verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL) {
+      verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL),
+      treeSeedBase_(streamBase_ ^ 0x5452454553000000ULL) {
   specs_.approximateSolutions = true;
   if (settings.tiltMargin < 1.0)
     evaluator_.setNominalTiltLimit(settings.tiltMargin * context.problem().interaction.maxTilt);
@@ -137,6 +120,13 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(steering_.jacobianAims()); });
   // Times the tree was started afresh: stalled (restart_after) or full (tree_motions).
   addPlannerProgressProperty("restarts INTEGER", [this] { return std::to_string(restarts_); });
+  // parallel_trees: trees grown at once with others and found unneeded, as a tree before them
+  // ended the search (their work is not in the other counts).
+  // Motions grown over every tree (with parallel_trees the planner data holds only the plan's).
+  addPlannerProgressProperty("grown_motions INTEGER",
+                             [this] { return std::to_string(grownMotions_); });
+  addPlannerProgressProperty("discarded_trees INTEGER",
+                             [this] { return std::to_string(discardedTrees_); });
   // 1 when the search ended because its trees hold max_motions motions, not at the time limit.
   addPlannerProgressProperty("motion_budget_spent INTEGER",
                              [this] { return std::to_string(motionBudgetSpent_ ? 1 : 0); });
@@ -182,6 +172,20 @@ void PKpiece::clear() {
   goalStarts_.clear();
   iteration_ = 1;
   beliefMeanSum_ = 0.0;
+  resetCounters();
+  solutionBeliefs_.clear();
+  solutionConfidence_.reset();
+  verified_.clear();
+  patienceEnd_.reset();
+  deadline_.reset();  // the next solve() is given its own
+  verifier_.stopAt(std::nullopt);
+  closest_ = nullptr;
+  expansionsSinceProgress_ = 0;
+  treeStart_ = 0;
+  motionBudgetSpent_ = false;
+}
+
+void PKpiece::resetCounters() {
   candidateCount_ = 0;
   goalCandidates_ = 0;
   steeredCandidates_ = 0;
@@ -194,20 +198,19 @@ void PKpiece::clear() {
   evaluator_.resetCounts();
   steering_.resetCount();
   bestGoalConfidence_ = 0.0;
-  solutionBeliefs_.clear();
-  solutionConfidence_.reset();
   verifications_ = 0;
   verificationRejections_ = 0;
   verificationRuns_ = 0;
-  verified_.clear();
-  patienceEnd_.reset();
-  deadline_.reset();  // the next solve() is given its own
-  verifier_.stopAt(std::nullopt);
-  closest_ = nullptr;
-  expansionsSinceProgress_ = 0;
-  treeStart_ = 0;
   restarts_ = 0;
-  motionBudgetSpent_ = false;
+  discardedTrees_ = 0;
+  grownMotions_ = 0;
+}
+
+void PKpiece::setThreads(unsigned threads) {
+  if (settings_.parallelTrees)
+    treeProcesses_ = std::max(1u, threads);
+  else
+    evaluator_.useWorkers(threads);
 }
 
 std::uint64_t PKpiece::nextStreamSeed() {
@@ -717,6 +720,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   if (motion->reachesGoal) motion->successEstimate = solutionConfidence(chosen);
   Motion* raw = motion.get();
   motions_.push_back(std::move(motion));
+  ++grownMotions_;
   addMotion(raw);
   return raw;
 }
@@ -811,8 +815,23 @@ void PKpiece::recordSolution(const Motion* end, bool exact, double distance) {
 
 ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCondition& ptc) {
   checkValidity();
-  if (motions_.empty()) plantRoot();
   motionBudgetSpent_ = false;
+  if (settings_.parallelTrees) return solveTreeByTree(ptc);
+  if (motions_.empty()) plantRoot();
+  for (;;) {
+    const TreeEnd end = growTree(ptc);
+    if (end == TreeEnd::Verified) {
+      if (collectedEnough()) return returnBestCollected();
+      startPatience();
+      if (patienceSpent()) return returnBestCollected();
+    }
+    if (end == TreeEnd::Stopped) break;
+    startAfresh();
+  }
+  return finish();
+}
+
+PKpiece::TreeEnd PKpiece::growTree(const ompl::base::PlannerTerminationCondition& ptc) {
   while (!ptc && !outOfMotions() && !pastDeadline() && !patienceSpent()) {
     Motion* from = selectMotion();
     CellData* cell = from->cell;
@@ -823,20 +842,17 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
     if (added && added->reachesGoal) {
       if (const std::optional<VerifiedPlan> plan = verifyPlan(added)) {
         verified_.push_back(*plan);
-        if (collectedEnough()) return returnBestCollected();
-        startPatience();
-        if (patienceSpent()) return returnBestCollected();
-        startAfresh();
-        continue;
+        return TreeEnd::Verified;
       }
-      if (pastDeadline()) break;
-      if (settings_.restartOnRejection) {
-        startAfresh();
-        continue;
-      }
+      if (pastDeadline()) return TreeEnd::Stopped;
+      if (settings_.restartOnRejection) return TreeEnd::Abandoned;
     }
-    if (stalled()) startAfresh();
+    if (stalled()) return TreeEnd::Abandoned;
   }
+  return TreeEnd::Stopped;
+}
+
+ompl::base::PlannerStatus PKpiece::finish() {
   motionBudgetSpent_ = outOfMotions();
   if (!verified_.empty()) return returnBestCollected();
   if (!closest_ || closest_->parent == nullptr) return ompl::base::PlannerStatus::TIMEOUT;
@@ -856,6 +872,7 @@ void PKpiece::plantRoot() {
   Motion* raw = root.get();
   treeStart_ = motions_.size();
   motions_.push_back(std::move(root));
+  ++grownMotions_;
   addMotion(raw);
   grid_.updateAll();
   progressRank_ = raw->goalDistance;

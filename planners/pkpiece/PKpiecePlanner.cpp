@@ -51,6 +51,16 @@ void checkPlansCanBeCompared(const PKpieceSettings& settings) {
   }
 }
 
+/// Trees grown at once end the search in their order, one plan from one tree: nothing to
+/// collect or compare across them, and no shared budget of motions.
+void checkParallelTrees(const PKpieceSettings& settings) {
+  if (!settings.parallelTrees) return;
+  if (settings.plans > 1 || settings.aspiration > 0.0 || settings.maxMotions > 0)
+    throw std::invalid_argument(
+        "parallel_trees needs plans 1, aspiration 0 and max_motions 0 (trees grown at once end "
+        "the search with the first plan in their order); set parallel_trees 0 for those");
+}
+
 PlannerRegistry::Entry pKpiece() {
   return plannerEntry<PKpieceSettings>(
       "p-KPIECE",
@@ -64,6 +74,7 @@ PlannerRegistry::Entry pKpiece() {
         checkApproachPitch(resolved.approachPitch, context.goal().spec());
         checkSomethingJudges(resolved);
         checkPlansCanBeCompared(resolved);
+        checkParallelTrees(resolved);
         return ompl::base::PlannerPtr(std::make_shared<PKpiece>(context, resolved));
       });
 }

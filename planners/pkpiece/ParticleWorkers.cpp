@@ -1,5 +1,7 @@
 #include "kautham/planners/pkpiece/ParticleWorkers.h"
 
+#include "ProcessIo.h"
+
 #include <poll.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -16,6 +18,8 @@
 #include <thread>
 
 namespace kautham::planners {
+
+using namespace process_io;
 
 namespace {
 
@@ -49,88 +53,6 @@ std::size_t resultSize(const ParticleRunner& runner) {
 // values) is a corrupt message.
 constexpr std::uint64_t kMaxRecords = 1u << 16;
 constexpr std::uint64_t kMaxControlValues = 1u << 10;
-
-/// Appends raw bytes; reads them back in order.
-class Packer {
- public:
-  explicit Packer(std::vector<unsigned char>& buffer) : buffer_(buffer) { buffer_.clear(); }
-  void put(const void* data, std::size_t size) {
-    const auto* bytes = static_cast<const unsigned char*>(data);
-    buffer_.insert(buffer_.end(), bytes, bytes + size);
-  }
-  void put(std::uint64_t value) { put(&value, sizeof value); }
-  void put(double value) { put(&value, sizeof value); }
-
- private:
-  std::vector<unsigned char>& buffer_;
-};
-
-class Unpacker {
- public:
-  explicit Unpacker(const std::vector<unsigned char>& buffer) : data_(buffer.data()) {}
-  void get(void* data, std::size_t size) {
-    std::memcpy(data, data_ + offset_, size);
-    offset_ += size;
-  }
-  std::uint64_t u64() {
-    std::uint64_t value = 0;
-    get(&value, sizeof value);
-    return value;
-  }
-  double real() {
-    double value = 0.0;
-    get(&value, sizeof value);
-    return value;
-  }
-
- private:
-  const unsigned char* data_;
-  std::size_t offset_ = 0;
-};
-
-enum class Io { Ok, Closed, Failed };
-
-/// Reads exactly `size` bytes (retrying partial reads and EINTR). Closed: end of file.
-Io readAll(int fd, void* data, std::size_t size) {
-  auto* bytes = static_cast<unsigned char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::read(fd, bytes, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return errno == ECONNRESET ? Io::Closed : Io::Failed;
-    if (n == 0) return Io::Closed;
-    bytes += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return Io::Ok;
-}
-
-/// Writes exactly `size` bytes; a closed peer is an error, not SIGPIPE.
-Io writeAll(int fd, const void* data, std::size_t size) {
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::send(fd, bytes, size, MSG_NOSIGNAL);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return errno == EPIPE || errno == ECONNRESET ? Io::Closed : Io::Failed;
-    bytes += n;
-    size -= static_cast<std::size_t>(n);
-  }
-  return Io::Ok;
-}
-
-pid_t waitFor(pid_t pid, int* status, int options) {
-  pid_t r;
-  do r = ::waitpid(pid, status, options);
-  while (r < 0 && errno == EINTR);
-  return r;
-}
-
-std::string describeStatus(int status) {
-  if (WIFSIGNALED(status))
-    return "killed by signal " + std::to_string(WTERMSIG(status)) + " (" +
-           ::strsignal(WTERMSIG(status)) + ")";
-  if (WIFEXITED(status)) return "exited with status " + std::to_string(WEXITSTATUS(status));
-  return "stopped (status " + std::to_string(status) + ")";
-}
 
 }  // namespace
 

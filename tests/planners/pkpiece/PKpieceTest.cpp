@@ -474,6 +474,43 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
   EXPECT_EQ(run.property("restarts"), again.property("restarts"));
 }
 
+TEST(PKpieceTest, ParallelTreesGiveAFixedSeedsPlanTheSameAtAnyThreads) {
+  // parallel_trees: each tree grows in a process of its own, with random streams of its own;
+  // the first tree in order that ends with a verified plan gives it. At one thread the trees
+  // grow one after another; at two, two at a time, and the same trees give the same plan.
+  std::vector<ParameterOverride> oneThread = generateAndTest();
+  oneThread.push_back({"parallel_trees", "1"});
+  oneThread.push_back({"max_motions", "0"});  // refused with parallel_trees: the time guards
+  const std::string scene = "tests/data/pusher_cans_uncertain.xml";
+  const PlanRun run = plan(scene, "p-KPIECE", 1, oneThread);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  EXPECT_GE(std::stol(run.property("restarts")), 1);  // this seed's first tree is rejected
+  EXPECT_EQ(run.property("discarded_trees"), "0");    // one at a time: none grown in vain
+  EXPECT_GT(std::stol(run.property("grown_motions")), 0);
+  const PlanRun again = plan(scene, "p-KPIECE", 1, withTwoThreads(oneThread));
+  expectSameControls(run, again);
+  for (const char* property :
+       {"restarts", "grown_motions", "verifications", "solution_confidence", "candidates"})
+    EXPECT_EQ(run.property(property), again.property(property)) << property;
+}
+
+TEST(PKpieceTest, ParallelTreesEndingInTheFirstTreeGiveTheUsualPlan) {
+  // The first tree draws on from the planner's own streams: a search that ends there (seed 4
+  // here) gives the plan it gives without parallel_trees.
+  std::vector<ParameterOverride> usual = generateAndTest();
+  usual.push_back({"max_motions", "0"});
+  std::vector<ParameterOverride> parallel = usual;
+  parallel.push_back({"parallel_trees", "1"});
+  const std::string scene = "tests/data/pusher_cans_uncertain.xml";
+  const PlanRun first = plan(scene, "p-KPIECE", 4, usual);
+  ASSERT_TRUE(first.outcome.solved);
+  ASSERT_EQ(first.property("restarts"), "0");
+  const PlanRun inProcesses = plan(scene, "p-KPIECE", 4, parallel);
+  expectSameControls(first, inProcesses);
+  EXPECT_EQ(first.property("solution_confidence"), inProcesses.property("solution_confidence"));
+}
+
 TEST(PKpieceTest, CollectsVerifiedPlansFromNewTreesAndReturnsOneOfThem) {
   // plans 3: each plan that passes verification starts a new tree until three have passed;
   // the one that succeeded most often is returned, its estimate measured again by 20 fresh
@@ -552,6 +589,14 @@ TEST(PKpieceTest, SeveralPlansWithoutVerificationAreRejected) {
                 makeRequest(problem, "p-KPIECE", {{"aspiration", "0.8"}, {"uncertainty", "0"}},
                             seedRandomness(1)),
                 "aspiration");
+  // Trees grown at once end the search with one plan, in their order: nothing to collect, and
+  // no shared budget of motions.
+  for (const ParameterOverride& refused : std::vector<ParameterOverride>{
+           {"plans", "2"}, {"aspiration", "0.8"}, {"max_motions", "1000"}})
+    expectRefused(
+        context,
+        makeRequest(problem, "p-KPIECE", {{"parallel_trees", "1"}, refused}, seedRandomness(1)),
+        "parallel_trees");
 }
 
 TEST(PKpieceTest, WithoutParticlesOrVerificationUnderUncertaintyIsRejected) {

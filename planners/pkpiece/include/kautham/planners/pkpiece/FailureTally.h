@@ -22,6 +22,15 @@ class FailureTally {
   void addViolation(physics::Violation violation, std::optional<std::size_t> body);
   /// A valid motion moved `body` more than the interaction limit d.
   void addDisplacement(std::size_t body);
+  /// One kind of failure and how often: what entries() lists and add() takes back (a tally
+  /// moved between processes).
+  struct Entry {
+    physics::Violation violation = physics::Violation::None;  ///< None: moved more than d
+    std::optional<std::size_t> body;
+    std::uint64_t count = 0;
+  };
+  std::vector<Entry> entries() const;
+  void add(const Entry& entry);
   std::uint64_t total() const { return total_; }
   /// Most frequent first, bodies named by the layout.
   std::vector<FailureCount> counts(const physics::WorldLayout& layout) const;

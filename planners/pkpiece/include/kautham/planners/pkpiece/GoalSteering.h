@@ -76,6 +76,8 @@ class GoalSteering {
   /// since construction or resetCount().
   std::uint64_t jacobianAims() const { return jacobianAims_; }
   void resetCount() { jacobianAims_ = 0; }
+  /// Adds aims made elsewhere (a tree grown in a process of its own).
+  void addJacobianAims(std::uint64_t aims) const { jacobianAims_ += aims; }
 
  private:
   /// The goal's nominal orientation pitched down by `pitch` about the horizontal across the

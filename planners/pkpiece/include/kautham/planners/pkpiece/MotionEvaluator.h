@@ -136,6 +136,8 @@ class MotionEvaluator {
   const FailureTally& particleFailures() const { return failures_; }
   /// Forgets the particles run so far and their failures (the planner's clear()).
   void resetCounts();
+  /// Adds particles run elsewhere (a tree grown in a process of its own) to the counts.
+  void addCounts(std::uint64_t particles, std::uint64_t certainEarly, const FailureTally& failures);
 
  private:
   Eigen::Vector3d targetPosition(const double* state) const;

@@ -53,7 +53,9 @@ class PKpiece : public ompl::base::Planner,
     return steeredFailures_.counts(context_.layout());
   }
   /// Particle motions run in threads - 1 worker processes and this one (MotionEvaluator).
-  void setThreads(unsigned threads) override { evaluator_.useWorkers(threads); }
+  /// The processes the search uses: particle workers, or with parallel_trees the trees grown
+  /// at once (each in a process of its own, its particles and verifications run there).
+  void setThreads(unsigned threads) override;
   /// Plan verification stops there (PlanVerifier::stopAt), and so does the search; clear()
   /// forgets it.
   void setDeadline(Clock::time_point deadline) override;
@@ -214,6 +216,27 @@ class PKpiece : public ompl::base::Planner,
   /// Forgets the tree for the search (its cells, the motions near the goal) and plants a new
   /// root; the old motions stay, so the nearest of all can still be an approximate solution.
   void startAfresh();
+  void resetCounters();
+
+  /// How a tree's growth ended: with a verified plan, given up (stalled, full, or its plan
+  /// rejected with restartOnRejection), or stopped (time, ptc, maxMotions, patience).
+  enum class TreeEnd : std::uint64_t { Verified = 0, Abandoned = 1, Stopped = 2 };
+  TreeEnd growTree(const ompl::base::PlannerTerminationCondition& ptc);
+  /// The search's outcome once no tree goes on: the best verified plan, else the motion
+  /// nearest the goal as an approximate solution.
+  ompl::base::PlannerStatus finish();
+
+  // parallel_trees (PKpieceTrees.cpp): tree k grows in a process of its own from the planner as
+  // it was when the search began, with random streams of its own (reseedForTree), and the
+  // search ends with the first tree, in index order, that ends it.
+  ompl::base::PlannerStatus solveTreeByTree(const ompl::base::PlannerTerminationCondition& ptc);
+  void reseedForTree(std::size_t tree);
+  /// In tree k's process: grows it, and packs how it ended, its counts and its plan (or the
+  /// motion nearest the goal) for this process.
+  std::vector<unsigned char> growTreeForSearch(std::size_t tree,
+                                               const ompl::base::PlannerTerminationCondition& ptc);
+  /// Takes a tree's packed result into this planner; how the tree ended.
+  TreeEnd settleTree(const std::vector<unsigned char>& result);
 
   physics::PlanningContext& context_;
   PKpieceSettings settings_;
@@ -259,9 +282,13 @@ class PKpiece : public ompl::base::Planner,
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to
   unsigned expansionsSinceProgress_ = 0;  ///< expansions since then (restartAfter)
-  std::size_t treeStart_ = 0;       ///< motions_'s index of the current tree's root (treeMotions)
-  std::uint64_t restarts_ = 0;      ///< times the tree started afresh
-  bool motionBudgetSpent_ = false;  ///< the last solve() ended at maxMotions
+  std::size_t treeStart_ = 0;         ///< motions_'s index of the current tree's root (treeMotions)
+  std::uint64_t restarts_ = 0;        ///< times the tree started afresh
+  bool motionBudgetSpent_ = false;    ///< the last solve() ended at maxMotions
+  unsigned treeProcesses_ = 1;        ///< trees grown at once (parallel_trees)
+  std::uint64_t treeSeedBase_ = 0;    ///< tree k's streams derive from this and k (parallel_trees)
+  std::uint64_t discardedTrees_ = 0;  ///< trees grown past the one that ended the search
+  std::uint64_t grownMotions_ = 0;    ///< motions the trees grew, in every process
 };
 
 }  // namespace kautham::planners

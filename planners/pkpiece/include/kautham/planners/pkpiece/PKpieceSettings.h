@@ -130,6 +130,13 @@ struct PKpieceSettings {
   /// A plan that fails verification starts the tree afresh: grown on, the tree mostly reaches
   /// the goal again through the rejected plan's pushes.
   bool restartOnRejection;
+  /// Each tree grows in a process of its own, with random streams of its own (a function of
+  /// the seed and the tree's index), `--threads` of them at once; the search ends with the
+  /// first tree, in index order, that ends it (a verified plan, or the time). The same plan for
+  /// a seed at any --threads; a search that starts trees afresh (tree_motions, restart_after,
+  /// restart_on_rejection) uses every core without particle workers. Needs plans 1, aspiration
+  /// 0 and max_motions 0.
+  bool parallelTrees;
   /// Verified plans to collect before the search ends (needs verification): each one that
   /// passes starts a new tree, and the plan that succeeded most often over its verification
   /// and estimate runs is returned, its estimate measured again by fresh runs. When the time
@@ -400,6 +407,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(0)
                    .describe("start the tree afresh when a plan fails verification (grown on, "
                              "the tree mostly reaches the goal through the same pushes again)"))
+          .add(&S::parallelTrees,
+               Parameter::flag("parallel_trees")
+                   .byDefault(0)
+                   .describe("grow each tree in a process of its own, with random streams of its "
+                             "own, --threads at once; the first tree in order that ends the "
+                             "search gives the plan, the same at any --threads (needs plans 1, "
+                             "aspiration 0, max_motions 0)"))
           .add(&S::plans, Parameter::integer("plans").byDefault(1).range(1, 1000).describe(
                               "verified plans to collect, each from a new tree, before the one "
                               "that succeeded most often is returned (the best so far when the "

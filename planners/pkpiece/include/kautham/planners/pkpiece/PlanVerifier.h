@@ -40,6 +40,12 @@ class PlanVerifier {
   /// verification so cut does not pass, a measurement gives the rate of the runs it made.
   /// std::nullopt: no deadline.
   void stopAt(std::optional<Clock::time_point> deadline) { deadline_ = deadline; }
+  /// Runs counted from now on draw from streams derived from `seedBase`, from its first on (a
+  /// tree of its own, parallel_trees).
+  void reseed(std::uint64_t seedBase) {
+    seedBase_ = seedBase;
+    nextRun_ = 0;
+  }
 
   /// Runs up to `runs` executions of `controls`; stops as soon as the rate over all `runs`
   /// is sure to reach `threshold` (enough have succeeded) or sure not to (too many have

@@ -1,0 +1,226 @@
+// p-KPIECE's trees grown in processes of their own (parallel_trees): a search that starts its
+// tree afresh, again and again on the dense scenes, uses every core, and a fixed seed gives the
+// same plan at any --threads (docs/planners.md, "Trees grown in parallel").
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include <ompl/control/spaces/RealVectorControlSpace.h>
+
+#include "PKpieceMotion.h"
+#include "ProcessIo.h"
+#include "kautham/core/Random.h"
+#include "kautham/physics/WorldStateSpace.h"
+#include "kautham/planners/pkpiece/PKpiece.h"
+#include "kautham/planners/pkpiece/TreeProcesses.h"
+
+namespace kautham::planners {
+
+using namespace process_io;
+
+namespace {
+
+// How often the search looks at its termination condition while trees grow.
+constexpr std::chrono::milliseconds kPoll{20};
+// Once the termination condition holds, how long the trees have to end on their own (they see
+// the same time limit) before they are killed: a condition only this process sees (Ctrl-C).
+constexpr std::chrono::seconds kGrace{2};
+// More values than any state or control has: a corrupt message.
+constexpr std::size_t kMaxValues = 1u << 20;
+constexpr std::uint64_t kMaxMotions = 1u << 24;
+
+void putTally(Packer& pack, const FailureTally& tally) {
+  const std::vector<FailureTally::Entry> entries = tally.entries();
+  pack.put(std::uint64_t{entries.size()});
+  for (const FailureTally::Entry& e : entries) {
+    pack.put(static_cast<std::uint64_t>(e.violation));
+    pack.put(std::uint64_t{e.body ? *e.body + 1 : 0});
+    pack.put(e.count);
+  }
+}
+
+FailureTally getTally(Unpacker& unpack) {
+  FailureTally tally;
+  const std::uint64_t entries = unpack.u64();
+  if (entries > kMaxValues) throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+  for (std::uint64_t i = 0; i < entries; ++i) {
+    FailureTally::Entry e;
+    e.violation = static_cast<physics::Violation>(unpack.u64());
+    if (const std::uint64_t body = unpack.u64(); body > 0) e.body = body - 1;
+    e.count = unpack.u64();
+    tally.add(e);
+  }
+  return tally;
+}
+
+}  // namespace
+
+void PKpiece::reseedForTree(std::size_t tree) {
+  // Tree 0 draws on from the planner's own streams, as the first tree does without
+  // parallel_trees: a search that ends in its first tree gives the same plan either way.
+  if (tree == 0) return;
+  const std::uint64_t seed = core::runSeed(treeSeedBase_, tree);
+  rng_.setLocalSeed(static_cast<std::uint_fast32_t>(seed & 0xffffffffULL));
+  fitRng_.seed(seed);
+  streamBase_ = (seed >> 33) << 20;
+  streamCounter_ = 0;
+  verifier_.reseed(streamBase_ ^ 0x5645524946590000ULL);
+}
+
+std::vector<unsigned char> PKpiece::growTreeForSearch(
+    std::size_t tree, const ompl::base::PlannerTerminationCondition& ptc) {
+  // This process is a copy of the planner as the search began (with the trees settled since):
+  // it counts only its own tree's work.
+  reseedForTree(tree);
+  verified_.clear();
+  closest_ = nullptr;
+  startAfresh();
+  resetCounters();
+  const physics::PropagationCounters before = context_.propagator().counters();
+  const TreeEnd end = growTree(ptc);
+  const physics::PropagationCounters after = context_.propagator().counters();
+
+  std::vector<unsigned char> bytes;
+  Packer pack(bytes);
+  pack.put(static_cast<std::uint64_t>(end));
+  for (const std::uint64_t count :
+       {candidateCount_, goalCandidates_, steeredCandidates_, steeredValid_, steeredKept_,
+        keptCandidates_, confirmations_, verifications_, verificationRejections_, verificationRuns_,
+        steering_.jacobianAims(), evaluator_.particleCount(), evaluator_.certainEarly(),
+        grownMotions_, after.propagations - before.propagations,
+        after.physicsSteps - before.physicsSteps})
+    pack.put(count);
+  pack.put(bestGoalConfidence_);
+  putTally(pack, evaluator_.particleFailures());
+  putTally(pack, candidateFailures_);
+  putTally(pack, steeredFailures_);
+
+  // The plan, or the motion nearest the goal: root first.
+  const Motion* last = end == TreeEnd::Verified       ? verified_.back().end
+                       : closest_ && closest_->parent ? closest_
+                                                      : nullptr;
+  pack.put(std::uint64_t{end == TreeEnd::Verified ? verified_.back().runs : 0u});
+  pack.put(std::uint64_t{end == TreeEnd::Verified ? verified_.back().successes : 0u});
+  std::vector<const Motion*> chain;
+  for (const Motion* m = last; m; m = m->parent) chain.push_back(m);
+  std::reverse(chain.begin(), chain.end());
+  pack.put(std::uint64_t{chain.size()});
+  const unsigned stateSize = si_->getStateDimension();
+  for (const Motion* m : chain) {
+    const double* values = physics::WorldStateSpace::values(m->state);
+    pack.put(std::vector<double>(values, values + stateSize));
+    pack.put(m->control);
+    pack.put(std::uint64_t{m->steps});
+    pack.put(std::uint64_t{m->expansion});
+    pack.put(m->belief);
+    pack.put(m->pathBelief);
+    pack.put(m->goalDistance);
+    pack.put(std::uint64_t{m->reachesGoal ? 1u : 0u});
+    pack.put(m->successEstimate);
+  }
+  return bytes;
+}
+
+PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
+  Unpacker unpack(result);
+  const std::uint64_t endValue = unpack.u64();
+  if (endValue > static_cast<std::uint64_t>(TreeEnd::Stopped))
+    throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+  const auto end = static_cast<TreeEnd>(endValue);
+  for (std::uint64_t* count : {&candidateCount_, &goalCandidates_, &steeredCandidates_,
+                               &steeredValid_, &steeredKept_, &keptCandidates_, &confirmations_,
+                               &verifications_, &verificationRejections_, &verificationRuns_})
+    *count += unpack.u64();
+  steering_.addJacobianAims(unpack.u64());
+  const std::uint64_t particles = unpack.u64();
+  const std::uint64_t certainEarly = unpack.u64();
+  grownMotions_ += unpack.u64();
+  physics::PropagationCounters work;
+  work.propagations = unpack.u64();
+  work.physicsSteps = unpack.u64();
+  context_.propagator().addCounters(work);
+  bestGoalConfidence_ = std::max(bestGoalConfidence_, unpack.real());
+  evaluator_.addCounts(particles, certainEarly, getTally(unpack));
+  for (FailureTally* tally : {&candidateFailures_, &steeredFailures_})
+    for (const FailureTally::Entry& entry : getTally(unpack).entries()) tally->add(entry);
+
+  VerifiedPlan plan;
+  plan.runs = static_cast<unsigned>(unpack.u64());
+  plan.successes = static_cast<unsigned>(unpack.u64());
+  const std::uint64_t length = unpack.u64();
+  if (length > kMaxMotions) throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+  const unsigned stateSize = si_->getStateDimension();
+  Motion* parent = nullptr;
+  for (std::uint64_t i = 0; i < length; ++i) {
+    auto motion = std::make_unique<Motion>();
+    const std::vector<double> values = unpack.reals(kMaxValues);
+    if (values.size() != stateSize)
+      throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+    motion->state = si_->allocState();
+    std::copy(values.begin(), values.end(), physics::WorldStateSpace::values(motion->state));
+    motion->control = unpack.reals(kMaxValues);
+    motion->steps = static_cast<unsigned>(unpack.u64());
+    motion->expansion = static_cast<unsigned>(unpack.u64());
+    motion->belief = unpack.real();
+    motion->pathBelief = unpack.real();
+    motion->goalDistance = unpack.real();
+    motion->reachesGoal = unpack.u64() != 0;
+    motion->successEstimate = unpack.real();
+    motion->parent = parent;
+    parent = motion.get();
+    motions_.push_back(std::move(motion));
+  }
+  if (end == TreeEnd::Verified) {
+    if (!parent) throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+    plan.end = parent;
+    verified_.push_back(plan);
+  } else if (parent && (!closest_ || parent->goalDistance < closest_->goalDistance)) {
+    closest_ = parent;
+  }
+  return end;
+}
+
+ompl::base::PlannerStatus PKpiece::solveTreeByTree(
+    const ompl::base::PlannerTerminationCondition& ptc) {
+  TreeProcesses trees(treeProcesses_,
+                      [this, &ptc](std::size_t tree) { return growTreeForSearch(tree, ptc); });
+  // Results by tree, until every tree before them is settled: the search takes them in order.
+  std::map<std::size_t, std::vector<unsigned char>> finished;
+  std::size_t next = 0;                      // the next tree to start
+  std::size_t settled = 0;                   // trees [0, settled) are taken in
+  std::optional<std::size_t> firstVerified;  // no tree after it need start
+  std::optional<Clock::time_point> killAt;
+  bool ended = false;
+  while (!ended) {
+    if (!ptc && !pastDeadline()) {
+      while (!trees.full() && (!firstVerified || next < *firstVerified)) trees.start(next++);
+    } else if (!killAt) {
+      killAt = Clock::now() + kGrace;
+    }
+    if (trees.idle() || (killAt && Clock::now() >= *killAt)) break;
+    if (std::optional<TreeProcesses::Finished> done = trees.wait(kPoll)) {
+      Unpacker peek(done->result);
+      if (peek.u64() == static_cast<std::uint64_t>(TreeEnd::Verified))
+        firstVerified = std::min(done->tree, firstVerified.value_or(done->tree));
+      finished.emplace(done->tree, std::move(done->result));
+    }
+    // A tree the time stopped is passed over: the plan is the first verified one in order.
+    for (auto it = finished.find(settled); it != finished.end() && !ended;
+         it = finished.find(settled)) {
+      ended = settleTree(it->second) == TreeEnd::Verified;
+      finished.erase(it);
+      ++settled;
+    }
+  }
+  trees.stopAll();
+  discardedTrees_ += next - settled;
+  restarts_ += settled > 0 ? settled - 1 : 0;
+  return finish();
+}
+
+}  // namespace kautham::planners

@@ -1,0 +1,117 @@
+#include "kautham/planners/pkpiece/TreeProcesses.h"
+
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "ProcessIo.h"
+
+namespace kautham::planners {
+
+using namespace process_io;
+
+// A result is [n] (uint64) and n bytes; the process then exits with status 0.
+
+TreeProcesses::TreeProcesses(unsigned processes, Grow grow)
+    : processes_(processes == 0 ? 1 : processes), grow_(std::move(grow)) {}
+
+TreeProcesses::~TreeProcesses() { stopAll(); }
+
+void TreeProcesses::start(std::size_t tree) {
+  int ends[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
+    throw std::system_error(errno, std::generic_category(), "tree processes: socketpair");
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int error = errno;
+    ::close(ends[0]);
+    ::close(ends[1]);
+    throw std::system_error(error, std::generic_category(), "tree processes: fork");
+  }
+  if (pid == 0) {
+    ::close(ends[0]);
+    for (const Running& r : running_) ::close(r.fd);
+    serve(tree, ends[1]);
+  }
+  ::close(ends[1]);
+  running_.push_back({tree, pid, ends[0], {}});
+}
+
+void TreeProcesses::serve(std::size_t tree, int fd) {
+  // Ctrl-C reaches the whole process group: the planner's process decides what it means.
+  std::signal(SIGINT, SIG_IGN);
+  int code = 0;
+  try {
+    const std::vector<unsigned char> result = grow_(tree);
+    const std::uint64_t size = result.size();
+    if (writeAll(fd, &size, sizeof size) != Io::Ok ||
+        writeAll(fd, result.data(), result.size()) != Io::Ok)
+      code = 1;
+  } catch (...) {
+    code = 2;
+  }
+  // Never return into the planner's code, never run its destructors or atexit handlers.
+  ::_exit(code);
+}
+
+std::optional<TreeProcesses::Finished> TreeProcesses::wait(std::chrono::milliseconds timeout) {
+  if (running_.empty()) return std::nullopt;
+  std::vector<pollfd> fds;
+  for (const Running& r : running_) fds.push_back({r.fd, POLLIN, 0});
+  int ready;
+  do ready = ::poll(fds.data(), fds.size(), static_cast<int>(timeout.count()));
+  while (ready < 0 && errno == EINTR);
+  if (ready < 0) throw std::system_error(errno, std::generic_category(), "tree processes: poll");
+  for (std::size_t i = 0; i < fds.size(); ++i)
+    if (fds[i].revents != 0)
+      if (std::optional<Finished> done = read(i)) return done;
+  return std::nullopt;
+}
+
+std::optional<TreeProcesses::Finished> TreeProcesses::read(std::size_t i) {
+  Running& r = running_[i];
+  unsigned char chunk[1 << 16];
+  ssize_t n;
+  do n = ::read(r.fd, chunk, sizeof chunk);
+  while (n < 0 && errno == EINTR);
+  if (n > 0) {
+    r.bytes.insert(r.bytes.end(), chunk, chunk + n);
+    return std::nullopt;
+  }
+  return reap(i);  // closed (or broken): the process is done
+}
+
+TreeProcesses::Finished TreeProcesses::reap(std::size_t i) {
+  const Running r = running_[i];
+  running_.erase(running_.begin() + static_cast<std::ptrdiff_t>(i));
+  ::close(r.fd);
+  int status = 0;
+  waitFor(r.pid, &status, 0);
+  std::uint64_t size = 0;
+  if (r.bytes.size() >= sizeof size) std::memcpy(&size, r.bytes.data(), sizeof size);
+  const bool whole = r.bytes.size() >= sizeof size && r.bytes.size() - sizeof size == size;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !whole)
+    throw std::runtime_error("p-KPIECE: the process growing tree " + std::to_string(r.tree) + " " +
+                             describeStatus(status) + " without its result");
+  return {r.tree, std::vector<unsigned char>(r.bytes.begin() + sizeof size, r.bytes.end())};
+}
+
+void TreeProcesses::stopAll() noexcept {
+  for (const Running& r : running_) {
+    ::kill(r.pid, SIGKILL);
+    ::close(r.fd);
+    int status = 0;
+    waitFor(r.pid, &status, 0);
+  }
+  running_.clear();
+}
+
+}  // namespace kautham::planners
