@@ -79,9 +79,10 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   reseedForTree(tree);
   verified_.clear();
   closest_ = nullptr;
-  startAfresh();
   resetCounters();
   const physics::PropagationCounters before = context_.propagator().counters();
+  startAfresh();
+  restarts_ = 0;  // the search counts the trees it takes in
   const TreeEnd end = growTree(ptc);
   const physics::PropagationCounters after = context_.propagator().counters();
 

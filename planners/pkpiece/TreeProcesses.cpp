@@ -7,7 +7,9 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -55,6 +57,10 @@ void TreeProcesses::serve(std::size_t tree, int fd) {
     if (writeAll(fd, &size, sizeof size) != Io::Ok ||
         writeAll(fd, result.data(), result.size()) != Io::Ok)
       code = 1;
+  } catch (const std::exception& e) {
+    // The planner's process reports the tree's death; the reason is only known here.
+    std::fprintf(stderr, "p-KPIECE, tree %zu: %s\n", tree, e.what());
+    code = 2;
   } catch (...) {
     code = 2;
   }
