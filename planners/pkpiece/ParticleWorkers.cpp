@@ -60,27 +60,15 @@ ParticleWorkers::ParticleWorkers(ParticleRunner& runner, unsigned workers) : run
   if (workers == 0) throw std::invalid_argument("ParticleWorkers: at least one worker");
   try {
     for (unsigned i = 0; i < workers; ++i) {
-      int ends[2];
-      if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
-        throw std::system_error(errno, std::generic_category(), "particle workers: socketpair");
-      const pid_t pid = ::fork();
-      if (pid < 0) {
-        const int error = errno;
-        ::close(ends[0]);
-        ::close(ends[1]);
-        throw std::system_error(error, std::generic_category(), "particle workers: fork");
-      }
-      if (pid == 0) {
-        // The worker: keeps only its own end, so each socket closes when this process or the
-        // planner's goes away.
-        ::close(ends[0]);
+      const Forked forked = forkWithSocket("particle workers");
+      if (forked.pid == 0) {
+        // The worker: keeps only its own socket.
         for (const Worker& w : workers_) ::close(w.fd);
-        serve(ends[1]);
+        serve(forked.fd);
       }
-      ::close(ends[1]);
       Worker worker;
-      worker.pid = pid;
-      worker.fd = ends[0];
+      worker.pid = forked.pid;
+      worker.fd = forked.fd;
       workers_.push_back(worker);
     }
   } catch (...) {

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace kautham::planners::process_io {
@@ -99,6 +100,30 @@ inline Io writeAll(int fd, const void* data, std::size_t size) {
     size -= static_cast<std::size_t>(n);
   }
   return Io::Ok;
+}
+
+/// A process forked with a socket to it: `fd` is this process's end of the socket, the child's
+/// in the child (pid 0), the parent's in the parent; the other end is closed on each side, so
+/// the socket closes when either process goes away.
+struct Forked {
+  pid_t pid = -1;
+  int fd = -1;
+};
+
+/// socketpair() and fork(); throws std::system_error naming `who` when either fails.
+inline Forked forkWithSocket(const std::string& who) {
+  int ends[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
+    throw std::system_error(errno, std::generic_category(), who + ": socketpair");
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int error = errno;
+    ::close(ends[0]);
+    ::close(ends[1]);
+    throw std::system_error(error, std::generic_category(), who + ": fork");
+  }
+  ::close(ends[pid == 0 ? 0 : 1]);
+  return {pid, ends[pid == 0 ? 1 : 0]};
 }
 
 inline pid_t waitFor(pid_t pid, int* status, int options) {

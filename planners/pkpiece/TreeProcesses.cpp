@@ -28,23 +28,12 @@ TreeProcesses::TreeProcesses(unsigned processes, Grow grow)
 TreeProcesses::~TreeProcesses() { stopAll(); }
 
 void TreeProcesses::start(std::size_t tree) {
-  int ends[2];
-  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
-    throw std::system_error(errno, std::generic_category(), "tree processes: socketpair");
-  const pid_t pid = ::fork();
-  if (pid < 0) {
-    const int error = errno;
-    ::close(ends[0]);
-    ::close(ends[1]);
-    throw std::system_error(error, std::generic_category(), "tree processes: fork");
+  const Forked forked = forkWithSocket("tree processes");
+  if (forked.pid == 0) {
+    for (const Running& r : running_) ::close(r.fd);  // the tree keeps only its own socket
+    serve(tree, forked.fd);
   }
-  if (pid == 0) {
-    ::close(ends[0]);
-    for (const Running& r : running_) ::close(r.fd);
-    serve(tree, ends[1]);
-  }
-  ::close(ends[1]);
-  running_.push_back({tree, pid, ends[0], {}});
+  running_.push_back({tree, forked.pid, forked.fd, {}});
 }
 
 void TreeProcesses::serve(std::size_t tree, int fd) {
