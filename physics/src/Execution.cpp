@@ -129,7 +129,7 @@ ExecutionResult execute(PlanningContext& context, const std::vector<ControlStep>
     else
       result.linkAfterControl.push_back(context.layout().goalLinkPosition(values));
   }
-  if (result.firstViolation == Violation::None && !controls.empty()) {
+  if (result.firstViolation == Violation::None && result.time > 0.0) {  // a step ran
     addFinalContacts(world, values);
     result.firstViolation = checker->check(values, checker->targetStart(), world.held());
     if (result.firstViolation != Violation::None) {

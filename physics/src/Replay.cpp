@@ -34,8 +34,9 @@ void applyGripperAction(World& world, const ControlStep& step, const double* sta
 
 void addFinalContacts(World& world, double* state) {
   const WorldLayout& layout = world.layout();
-  const RobotTouches touches =
-      world.robotTouches(world.held() ? static_cast<int>(*world.held()) : -1);
+  // The robot's links alone, as a step's contact events judge them: a held object resting on
+  // the table is not the robot touching it.
+  const RobotTouches touches = world.robotTouches(-1);
   unsigned flags = layout.flags(state);
   if (touches.fixed) flags |= kRobotTouchedFixed;
   if (touches.target) flags |= kRobotTouchedTarget;

@@ -120,11 +120,12 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                              [this] { return std::to_string(steering_.jacobianAims()); });
   // Times the tree was started afresh: stalled (restart_after) or full (tree_motions).
   addPlannerProgressProperty("restarts INTEGER", [this] { return std::to_string(restarts_); });
-  // parallel_trees: trees grown at once with others and found unneeded, as a tree before them
-  // ended the search (their work is not in the other counts).
-  // Motions grown over every tree (with parallel_trees the planner data holds only the plan's).
+  // Motions grown over every tree (with parallel_trees the planner data holds only the paths to
+  // each tree's plan or motion nearest the goal).
   addPlannerProgressProperty("grown_motions INTEGER",
                              [this] { return std::to_string(grownMotions_); });
+  // parallel_trees: trees grown at once with others and not taken in, as a tree before them
+  // ended the search or the time ran out first (their work is not in the other counts).
   addPlannerProgressProperty("discarded_trees INTEGER",
                              [this] { return std::to_string(discardedTrees_); });
   // 1 when the search ended because its trees hold max_motions motions, not at the time limit.

@@ -50,7 +50,10 @@ FailureTally getTally(Unpacker& unpack) {
   if (entries > kMaxValues) throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
   for (std::uint64_t i = 0; i < entries; ++i) {
     FailureTally::Entry e;
-    e.violation = static_cast<physics::Violation>(unpack.u64());
+    const std::uint64_t violation = unpack.u64();
+    if (violation >= physics::kViolationKinds)
+      throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+    e.violation = static_cast<physics::Violation>(violation);
     if (const std::uint64_t body = unpack.u64(); body > 0) e.body = body - 1;
     e.count = unpack.u64();
     tally.add(e);
@@ -77,13 +80,20 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   // This process is a copy of the planner as the search began (with the trees settled since):
   // it counts only its own tree's work.
   reseedForTree(tree);
+  // The paths adopted from the trees taken in before this one: how many depends on --threads,
+  // so the tree starts without them.
+  for (auto& motion : motions_) si_->freeState(motion->state);
+  motions_.clear();
   verified_.clear();
   closest_ = nullptr;
   resetCounters();
   const physics::PropagationCounters before = context_.propagator().counters();
   startAfresh();
   restarts_ = 0;  // the search counts the trees it takes in
-  const TreeEnd end = growTree(ptc);
+  // The caller's condition may report progress or count its checks: that is the search's own
+  // process's business. A tree stops at the time limit (and at the condition when there is none).
+  const ompl::base::PlannerTerminationCondition atDeadline([this] { return pastDeadline(); });
+  const TreeEnd end = growTree(deadline_ ? atDeadline : ptc);
   const physics::PropagationCounters after = context_.propagator().counters();
 
   std::vector<unsigned char> bytes;
@@ -158,10 +168,11 @@ PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
   const unsigned stateSize = si_->getStateDimension();
   Motion* parent = nullptr;
   for (std::uint64_t i = 0; i < length; ++i) {
-    auto motion = std::make_unique<Motion>();
     const std::vector<double> values = unpack.reals(kMaxValues);
     if (values.size() != stateSize)
       throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
+    motions_.push_back(std::make_unique<Motion>());  // owned before anything else can throw
+    Motion* motion = motions_.back().get();
     motion->state = si_->allocState();
     std::copy(values.begin(), values.end(), physics::WorldStateSpace::values(motion->state));
     motion->control = unpack.reals(kMaxValues);
@@ -173,8 +184,7 @@ PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
     motion->reachesGoal = unpack.u64() != 0;
     motion->successEstimate = unpack.real();
     motion->parent = parent;
-    parent = motion.get();
-    motions_.push_back(std::move(motion));
+    parent = motion;
   }
   if (end == TreeEnd::Verified) {
     if (!parent) throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
@@ -219,8 +229,15 @@ ompl::base::PlannerStatus PKpiece::solveTreeByTree(
     }
   }
   trees.stopAll();
-  discardedTrees_ += next - settled;
-  restarts_ += settled > 0 ? settled - 1 : 0;
+  // Stopped by the time with trees killed before they answered: those are passed over, and the
+  // results in hand are still taken in order (a verified plan among them is the plan).
+  std::size_t takenIn = settled;
+  for (auto it = finished.begin(); it != finished.end() && !ended; ++it) {
+    ended = settleTree(it->second) == TreeEnd::Verified;
+    ++takenIn;
+  }
+  discardedTrees_ += next - takenIn;
+  restarts_ += takenIn > 0 ? takenIn - 1 : 0;
   return finish();
 }
 

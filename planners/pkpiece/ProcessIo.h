@@ -3,13 +3,16 @@
 // Bytes between the planner's process and the processes it forks (ParticleWorkers,
 // TreeProcesses): raw values packed in order, and reads and writes that finish or say why not.
 
+#include <sys/prctl.h>
 #include <sys/socket.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -115,7 +118,13 @@ inline Forked forkWithSocket(const std::string& who) {
   int ends[2];
   if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, ends) != 0)
     throw std::system_error(errno, std::generic_category(), who + ": socketpair");
+  // Text this process has buffered would otherwise be written again by the child.
+  std::fflush(nullptr);
+  const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
+  // A child outlives no parent: killed alone (SIGTERM, SIGKILL), the planner takes its
+  // processes with it.
+  if (pid == 0 && (::prctl(PR_SET_PDEATHSIG, SIGKILL) != 0 || ::getppid() != parent)) ::_exit(3);
   if (pid < 0) {
     const int error = errno;
     ::close(ends[0]);

@@ -480,7 +480,10 @@ TEST(PKpieceTest, ParallelTreesGiveAFixedSeedsPlanTheSameAtAnyThreads) {
   // grow one after another; at two, two at a time, and the same trees give the same plan.
   std::vector<ParameterOverride> oneThread = generateAndTest();
   oneThread.push_back({"parallel_trees", "1"});
-  oneThread.push_back({"max_motions", "0"});  // refused with parallel_trees: the time guards
+  // max_motions is refused with parallel_trees: a time limit far above the 3 s this search
+  // takes guards against a hang instead (the plan asserted is found well within it).
+  oneThread.push_back({"max_motions", "0"});
+  oneThread.push_back({"time_limit", "600"});
   const std::string scene = "tests/data/pusher_cans_uncertain.xml";
   const PlanRun run = plan(scene, "p-KPIECE", 1, oneThread);
   ASSERT_TRUE(run.outcome.solved);
@@ -500,6 +503,7 @@ TEST(PKpieceTest, ParallelTreesEndingInTheFirstTreeGiveTheUsualPlan) {
   // here) gives the plan it gives without parallel_trees.
   std::vector<ParameterOverride> usual = generateAndTest();
   usual.push_back({"max_motions", "0"});
+  usual.push_back({"time_limit", "600"});
   std::vector<ParameterOverride> parallel = usual;
   parallel.push_back({"parallel_trees", "1"});
   const std::string scene = "tests/data/pusher_cans_uncertain.xml";

@@ -48,7 +48,9 @@ TEST(TreeProcessesTest, EachTreesResultComesBackWithItsIndex) {
   while (results.size() < 5) {
     while (!trees.full() && next < 5) trees.start(next++);
     EXPECT_LE(next - results.size(), 2u);  // never more than two at once
-    for (auto& [tree, bytes] : collect(trees, 1)) results.emplace(tree, std::move(bytes));
+    auto done = collect(trees, 1);
+    ASSERT_FALSE(done.empty()) << "no tree finished within a minute";
+    for (auto& [tree, bytes] : done) results.emplace(tree, std::move(bytes));
   }
   for (std::size_t tree = 0; tree < 5; ++tree) {
     std::vector<unsigned char> expected(tree + 1, static_cast<unsigned char>(tree));

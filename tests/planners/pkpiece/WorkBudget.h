@@ -14,14 +14,17 @@ namespace kautham::test {
 /// PKpieceTest.CollectsVerifiedPlansFromNewTreesAndReturnsOneOfThem).
 inline constexpr const char* kTestMotionBudget = "100000";
 
-/// `overrides` with the motion budget (unless they set their own) and an hour's time limit, a
-/// guard against a hang that the budget always reaches first on any machine that runs the tests.
+/// `overrides` with the motion budget (unless they set their own) and an hour's time limit
+/// (unless they set their own), a guard against a hang that the budget always reaches first on
+/// any machine that runs the tests.
 inline std::vector<planners::ParameterOverride> withWorkBudget(
     std::vector<planners::ParameterOverride> overrides) {
-  const bool ownBudget = std::any_of(overrides.begin(), overrides.end(),
-                                     [](const auto& set) { return set.first == "max_motions"; });
-  if (!ownBudget) overrides.push_back({"max_motions", kTestMotionBudget});
-  overrides.push_back({"time_limit", "3600"});
+  const auto sets = [&overrides](const char* name) {
+    return std::any_of(overrides.begin(), overrides.end(),
+                       [name](const auto& set) { return set.first == name; });
+  };
+  if (!sets("max_motions")) overrides.push_back({"max_motions", kTestMotionBudget});
+  if (!sets("time_limit")) overrides.push_back({"time_limit", "3600"});
   return overrides;
 }
 

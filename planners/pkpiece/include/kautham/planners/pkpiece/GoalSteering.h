@@ -77,7 +77,7 @@ class GoalSteering {
   std::uint64_t jacobianAims() const { return jacobianAims_; }
   void resetCount() { jacobianAims_ = 0; }
   /// Adds aims made elsewhere (a tree grown in a process of its own).
-  void addJacobianAims(std::uint64_t aims) const { jacobianAims_ += aims; }
+  void addJacobianAims(std::uint64_t aims) { jacobianAims_ += aims; }
 
  private:
   /// The goal's nominal orientation pitched down by `pitch` about the horizontal across the
