@@ -3,6 +3,7 @@
 // same plan at any --threads (docs/planners.md, "Trees grown in parallel").
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -63,6 +64,14 @@ FailureTally getTally(Unpacker& unpack) {
 
 }  // namespace
 
+std::array<std::uint64_t*, 11> PKpiece::searchCounts() {
+  // One list for packing a tree's counts and adding them up: the two stay in step.
+  return {&candidateCount_,   &goalCandidates_, &steeredCandidates_,
+          &steeredValid_,     &steeredKept_,    &keptCandidates_,
+          &confirmations_,    &verifications_,  &verificationRejections_,
+          &verificationRuns_, &grownMotions_};
+}
+
 void PKpiece::reseedForTree(std::size_t tree) {
   // Tree 0 draws on from the planner's own streams, as the first tree does without
   // parallel_trees: a search that ends in its first tree gives the same plan either way.
@@ -99,12 +108,10 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   std::vector<unsigned char> bytes;
   Packer pack(bytes);
   pack.put(static_cast<std::uint64_t>(end));
+  for (std::uint64_t* count : searchCounts()) pack.put(*count);
   for (const std::uint64_t count :
-       {candidateCount_, goalCandidates_, steeredCandidates_, steeredValid_, steeredKept_,
-        keptCandidates_, confirmations_, verifications_, verificationRejections_, verificationRuns_,
-        steering_.jacobianAims(), evaluator_.particleCount(), evaluator_.certainEarly(),
-        grownMotions_, after.propagations - before.propagations,
-        after.physicsSteps - before.physicsSteps})
+       {steering_.jacobianAims(), evaluator_.particleCount(), evaluator_.certainEarly(),
+        after.propagations - before.propagations, after.physicsSteps - before.physicsSteps})
     pack.put(count);
   pack.put(bestGoalConfidence_);
   putTally(pack, evaluator_.particleFailures());
@@ -143,14 +150,10 @@ PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
   if (endValue > static_cast<std::uint64_t>(TreeEnd::Stopped))
     throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
   const auto end = static_cast<TreeEnd>(endValue);
-  for (std::uint64_t* count : {&candidateCount_, &goalCandidates_, &steeredCandidates_,
-                               &steeredValid_, &steeredKept_, &keptCandidates_, &confirmations_,
-                               &verifications_, &verificationRejections_, &verificationRuns_})
-    *count += unpack.u64();
+  for (std::uint64_t* count : searchCounts()) *count += unpack.u64();
   steering_.addJacobianAims(unpack.u64());
   const std::uint64_t particles = unpack.u64();
   const std::uint64_t certainEarly = unpack.u64();
-  grownMotions_ += unpack.u64();
   physics::PropagationCounters work;
   work.propagations = unpack.u64();
   work.physicsSteps = unpack.u64();

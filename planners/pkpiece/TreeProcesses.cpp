@@ -1,7 +1,6 @@
 #include "kautham/planners/pkpiece/TreeProcesses.h"
 
 #include <poll.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 #include <system_error>
+#include <utility>
 
 #include "ProcessIo.h"
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -231,6 +232,8 @@ class PKpiece : public ompl::base::Planner,
   // search ends with the first tree, in index order, that ends it.
   ompl::base::PlannerStatus solveTreeByTree(const ompl::base::PlannerTerminationCondition& ptc);
   void reseedForTree(std::size_t tree);
+  /// The counts a tree's process sends back, each added to the search's.
+  std::array<std::uint64_t*, 11> searchCounts();
   /// In tree k's process: grows it, and packs how it ended, its counts and its plan (or the
   /// motion nearest the goal) for this process.
   std::vector<unsigned char> growTreeForSearch(std::size_t tree,
