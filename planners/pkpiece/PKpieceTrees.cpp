@@ -6,8 +6,6 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
-#include <map>
-#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -19,6 +17,7 @@
 #include "kautham/physics/WorldStateSpace.h"
 #include "kautham/planners/pkpiece/PKpiece.h"
 #include "kautham/planners/pkpiece/TreeProcesses.h"
+#include "kautham/planners/pkpiece/TreesInOrder.h"
 
 namespace kautham::planners {
 
@@ -203,44 +202,21 @@ ompl::base::PlannerStatus PKpiece::solveTreeByTree(
     const ompl::base::PlannerTerminationCondition& ptc) {
   TreeProcesses trees(treeProcesses_,
                       [this, &ptc](std::size_t tree) { return growTreeForSearch(tree, ptc); });
-  // Results by tree, until every tree before them is settled: the search takes them in order.
-  std::map<std::size_t, std::vector<unsigned char>> finished;
-  std::size_t next = 0;                      // the next tree to start
-  std::size_t settled = 0;                   // trees [0, settled) are taken in
-  std::optional<std::size_t> firstVerified;  // no tree after it need start
-  std::optional<Clock::time_point> killAt;
-  bool ended = false;
-  while (!ended) {
-    if (!ptc && !pastDeadline()) {
-      while (!trees.full() && (!firstVerified || next < *firstVerified)) trees.start(next++);
-    } else if (!killAt) {
-      killAt = Clock::now() + kGrace;
-    }
-    if (trees.idle() || (killAt && Clock::now() >= *killAt)) break;
-    if (std::optional<TreeProcesses::Finished> done = trees.wait(kPoll)) {
-      Unpacker peek(done->result);
-      if (peek.u64() == static_cast<std::uint64_t>(TreeEnd::Verified))
-        firstVerified = std::min(done->tree, firstVerified.value_or(done->tree));
-      finished.emplace(done->tree, std::move(done->result));
-    }
-    // A tree the time stopped is passed over: the plan is the first verified one in order.
-    for (auto it = finished.find(settled); it != finished.end() && !ended;
-         it = finished.find(settled)) {
-      ended = settleTree(it->second) == TreeEnd::Verified;
-      finished.erase(it);
-      ++settled;
-    }
-  }
-  trees.stopAll();
-  // Stopped by the time with trees killed before they answered: those are passed over, and the
-  // results in hand are still taken in order (a verified plan among them is the plan).
-  std::size_t takenIn = settled;
-  for (auto it = finished.begin(); it != finished.end() && !ended; ++it) {
-    ended = settleTree(it->second) == TreeEnd::Verified;
-    ++takenIn;
-  }
-  discardedTrees_ += next - takenIn;
-  restarts_ += takenIn > 0 ? takenIn - 1 : 0;
+  TreeOrder order;
+  order.ends = [](const TreeOrder::Result& result) {
+    Unpacker peek(result);
+    return peek.u64() == static_cast<std::uint64_t>(TreeEnd::Verified);
+  };
+  // A tree the time stopped is passed over: the plan is the first verified one in order.
+  order.takeIn = [this](const TreeOrder::Result& result) {
+    return settleTree(result) == TreeEnd::Verified;
+  };
+  order.stop = [this, &ptc] { return ptc() || pastDeadline(); };
+  order.grace = kGrace;
+  order.poll = kPoll;
+  const TreesTaken taken = takeTreesInOrder(trees, order);
+  discardedTrees_ += taken.started - taken.takenIn;
+  restarts_ += taken.takenIn > 0 ? taken.takenIn - 1 : 0;
   return finish();
 }
 

@@ -6,6 +6,7 @@
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 
 #include "kautham/core/Pose.h"
+#include "kautham/physics/Replay.h"
 #include "kautham/physics/WorldStateSpace.h"
 
 namespace kautham::planners {
@@ -54,26 +55,46 @@ ParticleResult ParticleRunner::run(const ParticleJob& job) {
   result.end = job.start;
   std::vector<double> next(stateSize_);
   auto record = job.recordAfter.begin();
+  unsigned stepsRun = 0;
+  bool lastRecorded = false;
   for (unsigned i = 0; i < job.steps && result.valid; ++i) {
     result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference) &&
                    !tiltedBeyond(next.data(), job.tiltLimit);
     bool stop = false;
     if (result.valid && job.goalStop != GoalStop::Ignore) {
       const bool inGoal = context_.goal().reached(next.data());
-      if (result.goalFrom > 0 && !inGoal) break;  // left the goal: end at its last state inside
+      // Left the goal: end at its last state inside, whose contacts this step judged.
+      if (result.goalFrom > 0 && !inGoal) return result;
       if (inGoal && result.goalFrom == 0) {
         result.goalFrom = i + 1;
         stop = job.goalStop == GoalStop::Entering;
       }
     }
     result.end.swap(next);
-    if (result.valid && record != job.recordAfter.end() && *record == i + 1) {
+    stepsRun = i + 1;
+    lastRecorded = result.valid && record != job.recordAfter.end() && *record == stepsRun;
+    if (lastRecorded) {
       result.recorded.push_back(result.end);
       ++record;
     }
     if (stop) break;
   }
+  if (result.valid && stepsRun > 0) judgeLastState(job, stepsRun, lastRecorded, result);
   return result;
+}
+
+void ParticleRunner::judgeLastState(const ParticleJob& job, unsigned stepsRun, bool lastRecorded,
+                                    ParticleResult& result) {
+  // A step judges the contacts it starts from, so no step judged the state this run ends in;
+  // physics::execute judges an execution's last state, and a run ends a plan (or a particle's
+  // share of one) where an execution does. The world is in that state: the last step left it.
+  physics::addFinalContacts(context_.world(), result.end.data());
+  if (context_.validityChecker().check(result.end.data(), job.targetReference) ==
+      physics::Violation::None)
+    return;
+  result.valid = false;
+  if (lastRecorded) result.recorded.pop_back();  // only valid states are recorded
+  if (result.goalFrom == stepsRun) result.goalFrom = 0;
 }
 
 physics::ExecutionResult ParticleRunner::execute(const std::vector<physics::ControlStep>& controls,

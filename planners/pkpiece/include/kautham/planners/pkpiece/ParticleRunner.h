@@ -31,7 +31,10 @@ class ParticleRunner {
             const Eigen::Vector3d& targetReference);
   /// Sets the job's contact parameters (they stay set: the caller restores its own) and steps
   /// the control from the start state until the first invalid state or `steps` steps; with
-  /// the job's tiltLimit, a movable object tilted beyond it makes a state invalid too.
+  /// the job's tiltLimit, a movable object tilted beyond it makes a state invalid too. The
+  /// state the run ends in is judged with its own contacts, as an execution's last state is
+  /// (physics::addFinalContacts): a run that ends with the robot on the table or the target
+  /// is invalid there.
   ParticleResult run(const ParticleJob& job);
   /// The first movable object tilted more than `limit` (rad) in `state`; none when limit <= 0.
   std::optional<std::size_t> tiltedBeyond(const double* state, double limit) const;
@@ -46,6 +49,11 @@ class ParticleRunner {
   std::size_t controlSize() const { return controlSize_; }
 
  private:
+  /// The contacts of the state a valid run ended in, after `stepsRun` steps: touching a fixed
+  /// obstacle or the target makes it invalid, and drops it from the recorded states.
+  void judgeLastState(const ParticleJob& job, unsigned stepsRun, bool lastRecorded,
+                      ParticleResult& result);
+
   physics::PlanningContext& context_;
   ompl::base::State* from_;
   ompl::base::State* to_;

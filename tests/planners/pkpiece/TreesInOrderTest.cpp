@@ -1,0 +1,77 @@
+// How a search takes in the results of trees grown in parallel: in index order, whatever order
+// they finish in. Tree 0 is made the slowest, so that tree 1 finishes first; every assertion
+// holds whatever the timing, which only decides whether the waiting is exercised.
+
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "kautham/planners/pkpiece/TreesInOrder.h"
+
+namespace kautham::planners {
+namespace {
+
+using namespace std::chrono_literals;
+
+/// Byte 0 of a tree's result: 1 when it ends the search (a verified plan). Byte 1: its index.
+TreeProcesses::Grow trees(std::vector<unsigned char> ending) {
+  return [ending](std::size_t tree) -> std::vector<unsigned char> {
+    if (tree == 0) std::this_thread::sleep_for(300ms);  // the slowest to finish
+    const unsigned char ends = tree < ending.size() ? ending[tree] : 0;
+    return {ends, static_cast<unsigned char>(tree)};
+  };
+}
+
+struct Taken {
+  TreesTaken counts;
+  std::vector<int> order;  ///< the trees taken in, in the order they were
+};
+
+Taken takeIn(TreeProcesses& processes) {
+  Taken taken;
+  TreeOrder order;
+  order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
+  order.takeIn = [&taken](const TreeOrder::Result& r) {
+    taken.order.push_back(r.at(1));
+    return r.at(0) == 1;
+  };
+  const auto guard = std::chrono::steady_clock::now() + 60s;  // against a hang, not timing
+  order.stop = [guard] { return std::chrono::steady_clock::now() > guard; };
+  taken.counts = takeTreesInOrder(processes, order);
+  return taken;
+}
+
+TEST(TreesInOrderTest, ALaterTreesPlanWaitsForAnEarlierTreeThatEndsTheSearch) {
+  // Trees 0 and 1 both end with a plan; tree 1 finishes first. The plan is tree 0's, and tree
+  // 1's result is never taken in.
+  TreeProcesses processes(2, trees({1, 1}));
+  const Taken taken = takeIn(processes);
+  EXPECT_EQ(taken.order, (std::vector<int>{0}));
+  EXPECT_EQ(taken.counts.takenIn, 1u);
+  EXPECT_EQ(taken.counts.started, 2u);
+  EXPECT_TRUE(processes.idle());
+}
+
+TEST(TreesInOrderTest, ALaterTreesPlanIsTakenAfterTheEarlierTreesWithout) {
+  // Tree 0 ends without a plan, after tree 1 found one: tree 0 is taken in first, then tree 1
+  // ends the search; no tree after tree 1 starts.
+  TreeProcesses processes(2, trees({0, 1}));
+  const Taken taken = takeIn(processes);
+  EXPECT_EQ(taken.order, (std::vector<int>{0, 1}));
+  EXPECT_EQ(taken.counts.started, 2u);
+}
+
+TEST(TreesInOrderTest, OneAtATimeTheTreesAreTakenInTheSameOrder) {
+  // Trees 0-2 without a plan, tree 3 with one: one process or three, the same trees taken in.
+  for (unsigned processes : {1u, 3u}) {
+    TreeProcesses pool(processes, trees({0, 0, 0, 1}));
+    const Taken taken = takeIn(pool);
+    EXPECT_EQ(taken.order, (std::vector<int>{0, 1, 2, 3})) << processes << " at once";
+    EXPECT_LE(taken.counts.started, 3u + processes) << processes << " at once";
+  }
+}
+
+}  // namespace
+}  // namespace kautham::planners
