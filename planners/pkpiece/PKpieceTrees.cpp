@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -25,11 +24,6 @@ using namespace process_io;
 
 namespace {
 
-// How often the search looks at its termination condition while trees grow.
-constexpr std::chrono::milliseconds kPoll{20};
-// Once the termination condition holds, how long the trees have to end on their own (they see
-// the same time limit) before they are killed: a condition only this process sees (Ctrl-C).
-constexpr std::chrono::seconds kGrace{2};
 // More values than any state or control has: a corrupt message.
 constexpr std::size_t kMaxValues = 1u << 20;
 constexpr std::uint64_t kMaxMotions = 1u << 24;
@@ -212,8 +206,6 @@ ompl::base::PlannerStatus PKpiece::solveTreeByTree(
     return settleTree(result) == TreeEnd::Verified;
   };
   order.stop = [this, &ptc] { return ptc() || pastDeadline(); };
-  order.grace = kGrace;
-  order.poll = kPoll;
   const TreesTaken taken = takeTreesInOrder(trees, order);
   discardedTrees_ += taken.started - taken.takenIn;
   restarts_ += taken.takenIn > 0 ? taken.takenIn - 1 : 0;

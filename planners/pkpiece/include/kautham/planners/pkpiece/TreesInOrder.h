@@ -18,7 +18,9 @@ struct TreeOrder {
   std::function<bool(const Result&)> takeIn;
   /// Whether the search must stop (its termination condition, the time limit).
   std::function<bool()> stop;
-  /// Once stop() holds, how long the trees still growing have to end on their own.
+  /// Once stop() holds, how long the trees still growing have to end on their own before they
+  /// are killed: they see the time limit themselves, not a condition only this process sees
+  /// (Ctrl-C).
   std::chrono::milliseconds grace{2000};
   /// How often stop() is looked at while trees grow.
   std::chrono::milliseconds poll{20};
