@@ -80,6 +80,15 @@ class ProblemReader {
     // layout (demos/<set>/ two levels under models/), then the user's folders.
     modelDirs_.insert(modelDirs_.begin(), {folder, folder.parent_path() / "models",
                                            folder.parent_path().parent_path() / "models"});
+    // Near the root the layouts name the same folder (/tmp/p.xml: /models twice): each folder
+    // once, in its first place, so the list of folders searched names each once.
+    std::vector<fs::path> unique;
+    for (const fs::path& given : modelDirs_) {
+      fs::path dir = given.lexically_normal();
+      if (!dir.has_filename()) dir = dir.parent_path();  // "a/b/" is "a/b"
+      if (std::find(unique.begin(), unique.end(), dir) == unique.end()) unique.push_back(dir);
+    }
+    modelDirs_ = std::move(unique);
   }
 
   Problem read() {

@@ -453,6 +453,22 @@ TEST_F(ProblemVariant, ModelsAreSearchedInTheGivenFoldersOnlyWhenGiven) {
   EXPECT_EQ(loadProblem(file, {repoFile("models")}).objects.size(), 7u);
 }
 
+TEST_F(ProblemVariant, AFolderSearchedTwiceIsListedOnce) {
+  // The problem's own folder given again (and once more spelt with "x/.."): a problem one level
+  // under the root meets the same, where its layouts' models/ folders are one.
+  const fs::path file = write(textOfCans5());
+  try {
+    loadProblem(file, {folder_, folder_ / "x" / ".."});
+    FAIL() << "loaded without a model folder";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    const std::string searched = (folder_ / "robots/planar_pusher.urdf").string();
+    const std::size_t first = message.find(searched);
+    ASSERT_NE(first, std::string::npos) << message;
+    EXPECT_EQ(message.find(searched, first + searched.size()), std::string::npos) << message;
+  }
+}
+
 TEST(ProblemLoader, MissingProblemFileIsAnInputErrorNamingIt) {
   const fs::path file = repoFile("tests/data/malformed/there_is_no_such_problem.xml");
   ASSERT_FALSE(fs::exists(file));
