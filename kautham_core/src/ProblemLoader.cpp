@@ -81,12 +81,15 @@ class ProblemReader {
     modelDirs_.insert(modelDirs_.begin(), {folder, folder.parent_path() / "models",
                                            folder.parent_path().parent_path() / "models"});
     // Near the root the layouts name the same folder (/tmp/p.xml: /models twice): each folder
-    // once, in its first place, so the list of folders searched names each once.
+    // once, in its first place and spelling, so the list of folders searched names each once.
+    // Two spellings are one folder when the file system resolves them alike ("a/b/", "a/x/../b").
     std::vector<fs::path> unique;
+    std::vector<fs::path> seen;
     for (const fs::path& given : modelDirs_) {
-      fs::path dir = given.lexically_normal();
-      if (!dir.has_filename()) dir = dir.parent_path();  // "a/b/" is "a/b"
-      if (std::find(unique.begin(), unique.end(), dir) == unique.end()) unique.push_back(dir);
+      const fs::path key = sameFolderKey(given);
+      if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
+      seen.push_back(key);
+      unique.push_back(given);
     }
     modelDirs_ = std::move(unique);
   }
@@ -140,6 +143,13 @@ class ProblemReader {
       xml_.fail(e, "unexpected element <" + tag +
                        ">; expected Robot, Obstacle, Environment, Controls, Physics, Uncertainty, "
                        "Interaction, Kinodynamics, Workspace or Planner");
+  }
+
+  static fs::path sameFolderKey(const fs::path& dir) {
+    std::error_code unresolved;
+    fs::path key = fs::weakly_canonical(dir, unresolved);
+    if (unresolved) key = dir.lexically_normal();
+    return key.has_filename() ? key : key.parent_path();  // "a/b/" is "a/b"
   }
 
   fs::path findModel(const XMLElement& e, const std::string& relative) const {
