@@ -84,13 +84,9 @@ class ProblemReader {
     // once, in its first place and spelling, so the list of folders searched names each once.
     // Two spellings are one folder when the file system resolves them alike ("a/b/", "a/x/../b").
     std::vector<fs::path> unique;
-    std::vector<fs::path> seen;
-    for (const fs::path& given : modelDirs_) {
-      const fs::path key = sameFolderKey(given);
-      if (std::find(seen.begin(), seen.end(), key) != seen.end()) continue;
-      seen.push_back(key);
-      unique.push_back(given);
-    }
+    std::set<fs::path> seen;
+    for (const fs::path& given : modelDirs_)
+      if (seen.insert(sameFolderKey(given)).second) unique.push_back(given);
     modelDirs_ = std::move(unique);
   }
 
