@@ -42,12 +42,13 @@ void MotionEvaluator::useWorkers(unsigned threads) {
   if (threads > 1) workers_ = std::make_unique<ParticleWorkers>(runner_, threads - 1);
 }
 
-std::vector<bool> MotionEvaluator::runExecutions(const std::vector<physics::ControlStep>& controls,
-                                                 const std::vector<std::uint64_t>& seeds) {
+std::vector<ExecutionOutcome> MotionEvaluator::runExecutions(
+    const std::vector<physics::ControlStep>& controls, const std::vector<std::uint64_t>& seeds) {
   if (workers_) return workers_->execute(controls, seeds);
-  std::vector<bool> reached;
-  for (std::uint64_t seed : seeds) reached.push_back(runner_.execute(controls, seed).reachedGoal);
-  return reached;
+  std::vector<ExecutionOutcome> outcomes;
+  for (std::uint64_t seed : seeds)
+    outcomes.push_back(ParticleRunner::outcomeOf(runner_.execute(controls, seed), controls.size()));
+  return outcomes;
 }
 
 ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion& motion,

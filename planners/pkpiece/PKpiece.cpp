@@ -711,6 +711,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->steps = steps;
   motion->parent = parent;
   motion->belief = chosen.verdict.belief();
+  motion->particleBelief = motion->belief;
   // Every piece of one candidate shares its belief: multiply it in once.
   motion->pathBelief = fromPathBelief * motion->belief;
   motion->goalDistance = steering_.rankDistance(values);
@@ -772,7 +773,48 @@ std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
   if (result.cutShort) return std::nullopt;  // undecided: the search ends, the plan stays
   ++verificationRejections_;
   end->reachesGoal = false;
+  if (settings_.learnFromExecutions) learnFromExecutions(end, result);
   return std::nullopt;
+}
+
+void PKpiece::learnFromExecutions(Motion* end, const VerificationResult& result) {
+  // The plan's motions, root first; each expansion's pieces make one control.
+  std::vector<Motion*> chain;
+  for (Motion* m = end; m->parent; m = m->parent) chain.push_back(m);
+  std::reverse(chain.begin(), chain.end());
+  const double prior = settings_.particles;  // the particles' belief counts as n_p runs
+  std::size_t control = 0;
+  for (std::size_t i = 0; i < chain.size(); ++i) {
+    if (i > 0 && chain[i]->expansion != chain[i - 1]->expansion) ++control;
+    if (control >= result.entered.size()) break;  // cannot happen: one control per expansion
+    Motion& m = *chain[i];
+    m.executionsThrough += result.entered[control];
+    m.executionsPassed += result.gotThrough[control];
+    if (m.executionsThrough == 0 && prior <= 0.0) continue;
+    m.belief = (prior * m.particleBelief + m.executionsPassed) / (prior + m.executionsThrough);
+  }
+  refreshPathBeliefs();
+}
+
+void PKpiece::refreshPathBeliefs() {
+  // Parents come before their children in motions_: one pass down the current tree.
+  for (std::size_t i = treeStart_ + 1; i < motions_.size(); ++i) {
+    Motion& m = *motions_[i];
+    // The pieces of one candidate share its belief, multiplied in once (addPiece).
+    m.pathBelief =
+        m.parent->expansion == m.expansion ? m.parent->pathBelief : m.parent->pathBelief * m.belief;
+  }
+  beliefMeanSum_ = 0.0;
+  for (const auto& cell : cells_) {
+    cell->beliefSum = 0.0;
+    for (const Motion* m : cell->motions) cell->beliefSum += selectionBelief(*m);
+    beliefMeanSum_ += cell->meanBelief();
+  }
+  goalStarts_.clear();
+  for (std::size_t i = treeStart_; i < motions_.size(); ++i)
+    if (!settings_.pathBelief || motions_[i]->pathBelief >= settings_.goalConfidence)
+      keepIfNear(goalStarts_, motions_[i].get());
+  grid_.updateAll();
 }
 
 ompl::base::PlannerStatus PKpiece::returnBestCollected() {

@@ -15,8 +15,13 @@ struct PKpiece::Motion {
   std::vector<double> control;
   unsigned steps = 0;
   Motion* parent = nullptr;
-  double belief = 1.0;      ///< b of the candidate it came from
-  double pathBelief = 1.0;  ///< product of the candidates' beliefs from the root to here
+  double belief = 1.0;  ///< b of the candidate it came from
+  /// Its particles' b, before executions of rejected plans through it were weighed in
+  /// (learnFromExecutions).
+  double particleBelief = 1.0;
+  unsigned executionsThrough = 0;  ///< rejected plans' executions that began its candidate
+  unsigned executionsPassed = 0;   ///< of those, the ones that got through it
+  double pathBelief = 1.0;         ///< product of the candidates' beliefs from the root to here
   std::shared_ptr<const ObjectPoseBelief> poses;
   std::shared_ptr<const RobotSpread> robotSpread;  ///< null: particles start as the state
   unsigned expansion = 0;  ///< the iteration that added it: its pieces share the number

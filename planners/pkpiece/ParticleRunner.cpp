@@ -103,4 +103,15 @@ physics::ExecutionResult ParticleRunner::execute(const std::vector<physics::Cont
   return physics::execute(context_, controls, rng, true);
 }
 
+ExecutionOutcome ParticleRunner::outcomeOf(const physics::ExecutionResult& run,
+                                           std::size_t controls) {
+  ExecutionOutcome outcome;
+  outcome.reached = run.reachedGoal;
+  if (run.brokenInControl)
+    outcome.controlsPassed = static_cast<unsigned>(*run.brokenInControl);
+  else if (run.firstViolation == physics::Violation::None)
+    outcome.controlsPassed = static_cast<unsigned>(controls);
+  return outcome;  // invalid before its first control: none passed
+}
+
 }  // namespace kautham::planners

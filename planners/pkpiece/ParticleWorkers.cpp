@@ -201,8 +201,11 @@ bool ParticleWorkers::serveExecution(int fd) {
   const physics::PhysicsPropagator& propagator = runner_.context().propagator();
   const physics::PropagationCounters before = propagator.counters();
   const physics::ExecutionResult run = runner_.execute(controls, seed);
+  // The particle result's goalFrom slot carries how far through the plan the run got.
+  const ExecutionOutcome outcome = ParticleRunner::outcomeOf(run, controls.size());
   Packer pack(buffer_);
-  packResult(pack, index, run.reachedGoal, 0, workSince(propagator, before), 0, run.finalState);
+  packResult(pack, index, outcome.reached, outcome.controlsPassed, workSince(propagator, before), 0,
+             run.finalState);
   return writeAll(fd, buffer_.data(), buffer_.size()) == Io::Ok;
 }
 
@@ -312,23 +315,31 @@ std::vector<ParticleResult> ParticleWorkers::run(const std::vector<ParticleJob>&
   return dispatch(batch);
 }
 
-std::vector<bool> ParticleWorkers::execute(const std::vector<physics::ControlStep>& controls,
-                                           const std::vector<std::uint64_t>& seeds) {
+std::vector<ExecutionOutcome> ParticleWorkers::execute(
+    const std::vector<physics::ControlStep>& controls, const std::vector<std::uint64_t>& seeds) {
   Batch batch;
   batch.size = seeds.size();
   batch.send = [&](Worker& worker, std::size_t i) { sendExecution(worker, i, controls, seeds[i]); };
   batch.runHere = [&](std::size_t i) {
     const physics::ExecutionResult run = runner_.execute(controls, seeds[i]);
+    const ExecutionOutcome outcome = ParticleRunner::outcomeOf(run, controls.size());
     ParticleResult result;
-    result.valid = run.reachedGoal;
+    result.valid = outcome.reached;
+    result.goalFrom = outcome.controlsPassed;
     result.end = run.finalState;
     return result;
   };
   batch.maxRecords = [](std::size_t) { return std::size_t{0}; };
   const std::vector<ParticleResult> results = dispatch(batch);
-  std::vector<bool> reached(results.size());
-  for (std::size_t i = 0; i < results.size(); ++i) reached[i] = results[i].valid;
-  return reached;
+  std::vector<ExecutionOutcome> outcomes(results.size());
+  for (std::size_t i = 0; i < results.size(); ++i) {
+    outcomes[i].reached = results[i].valid;
+    if (results[i].goalFrom > controls.size())
+      throw std::runtime_error(
+          "particle workers: an execution passed more controls than its plan has");
+    outcomes[i].controlsPassed = results[i].goalFrom;
+  }
+  return outcomes;
 }
 
 std::vector<ParticleResult> ParticleWorkers::dispatch(const Batch& batch) {

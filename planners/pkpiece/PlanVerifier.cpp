@@ -13,6 +13,17 @@ namespace {
 constexpr unsigned kRunsPerProcess = 4;
 }  // namespace
 
+void VerificationResult::add(const ExecutionOutcome& run) {
+  ++runs;
+  if (run.reached) ++successes;
+  const std::size_t controls = entered.size();
+  for (std::size_t c = 0; c < controls && c <= run.controlsPassed; ++c) {
+    ++entered[c];
+    const bool last = c + 1 == controls;
+    if (c < run.controlsPassed && (!last || run.reached)) ++gotThrough[c];
+  }
+}
+
 PlanVerifier::PlanVerifier(MotionEvaluator& evaluator, std::uint64_t seedBase)
     : evaluator_(evaluator), seedBase_(seedBase) {}
 
@@ -37,6 +48,8 @@ VerificationResult PlanVerifier::measure(const std::vector<physics::ControlStep>
 VerificationResult PlanVerifier::count(const std::vector<physics::ControlStep>& controls,
                                        unsigned runs, unsigned needed, unsigned allowed) {
   VerificationResult result;
+  result.entered.assign(controls.size(), 0);
+  result.gotThrough.assign(controls.size(), 0);
   const unsigned processes = evaluator_.threads();
   const unsigned batch = processes > 1 ? kRunsPerProcess * processes : 1;
   unsigned failures = 0;
@@ -52,13 +65,10 @@ VerificationResult PlanVerifier::count(const std::vector<physics::ControlStep>& 
     std::vector<std::uint64_t> seeds(std::min({batch, runs - result.runs, decidable}));
     for (std::size_t i = 0; i < seeds.size(); ++i)
       seeds[i] = core::runSeed(seedBase_, nextRun_ + i);
-    for (const bool reached : evaluator_.runExecutions(controls, seeds)) {
+    for (const ExecutionOutcome& run : evaluator_.runExecutions(controls, seeds)) {
       ++nextRun_;
-      ++result.runs;
-      if (reached)
-        ++result.successes;
-      else
-        ++failures;
+      result.add(run);
+      if (!run.reached) ++failures;
     }
   }
   return result;

@@ -474,6 +474,31 @@ TEST(PKpieceTest, WithoutParticlesPlansAreStillVerifiedAndARejectedOneStartsTheT
   EXPECT_EQ(run.property("restarts"), again.property("restarts"));
 }
 
+TEST(PKpieceTest, ARejectedPlanTeachesTheTreeTheSameAtAnyThreads) {
+  // learn_from_executions: the executions of a plan that fails verification are weighed into
+  // the beliefs of its motions, and the tree grows on from the new beliefs. Seed 4's first plan
+  // is rejected; from there the search differs from one that does not learn, and it is the
+  // same search at one thread and at two (the counts are made in order).
+  const std::vector<ParameterOverride> settings = {{"particles", "4"},
+                                                   {"candidates", "3"},
+                                                   {"verify_runs", "20"},
+                                                   {"goal_confidence", "0.4"},
+                                                   {"max_motions", "3000"}};
+  std::vector<ParameterOverride> learning = settings;
+  learning.push_back({"learn_from_executions", "1"});
+  const std::string scene = "tests/data/pusher_cans_uncertain.xml";
+  const PlanRun unlearned = plan(scene, "p-KPIECE", 4, settings);
+  const PlanRun run = plan(scene, "p-KPIECE", 4, learning);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  ASSERT_GE(std::stol(run.property("verification_rejections")), 1);
+  EXPECT_NE(run.property("grown_motions"), unlearned.property("grown_motions"));
+  const PlanRun again = plan(scene, "p-KPIECE", 4, withTwoThreads(learning));
+  expectSameControls(run, again);
+  for (const char* property : {"grown_motions", "verifications", "solution_confidence"})
+    EXPECT_EQ(run.property(property), again.property(property)) << property;
+}
+
 TEST(PKpieceTest, ParallelTreesGiveAFixedSeedsPlanTheSameAtAnyThreads) {
   // parallel_trees: each tree grows in a process of its own, with random streams of its own;
   // the first tree in order that ends with a verified plan gives it. At one thread the trees

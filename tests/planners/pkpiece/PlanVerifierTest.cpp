@@ -3,6 +3,8 @@
 // worker processes it counts the same runs.
 
 #include <chrono>
+#include <random>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <ompl/util/Console.h>
@@ -68,6 +70,36 @@ TEST(PlanVerifierTest, RunsSampledExecutionsOnFreshStreamsEachTime) {
   // The second verification does not reuse the first one's worlds.
   EXPECT_EQ(second.successes, successesOfStreams(scene.context, plan.controls, 12, 12));
   EXPECT_GT(first.successes + second.successes, 0u);  // the planner's plan does work
+}
+
+TEST(PlanVerifierTest, CountsHowFarThroughThePlanEachRunGot) {
+  // Per control: the runs that began it and those that got through it (through the last: that
+  // ended in the goal), as physics::execute's runs on the same streams say.
+  Scene scene;
+  const PlanOutcome plan = solve(scene.context, scene.request);
+  ASSERT_TRUE(plan.solved);
+  const std::size_t controls = plan.controls.size();
+  ASSERT_GE(controls, 2u);
+  std::vector<unsigned> entered(controls, 0);
+  std::vector<unsigned> gotThrough(controls, 0);
+  unsigned broken = 0;
+  for (unsigned i = 0; i < 12; ++i) {
+    std::mt19937_64 rng(core::runSeed(kSeedBase, i));
+    const physics::ExecutionResult run = physics::execute(scene.context, plan.controls, rng, true);
+    const std::size_t reached = run.brokenInControl ? *run.brokenInControl : controls - 1;
+    broken += run.brokenInControl ? 1 : 0;
+    for (std::size_t c = 0; c <= reached; ++c) {
+      ++entered[c];
+      if (c < reached || (!run.brokenInControl && run.reachedGoal)) ++gotThrough[c];
+    }
+  }
+  ASSERT_GT(broken, 0u) << "some of the 12 runs should break a rule on the way";
+  PlanVerifier verifier(scene.evaluator, kSeedBase);
+  const VerificationResult result = verifier.measure(plan.controls, 12);
+  EXPECT_EQ(result.entered, entered);
+  EXPECT_EQ(result.gotThrough, gotThrough);
+  EXPECT_EQ(result.entered.front(), 12u);
+  EXPECT_EQ(result.gotThrough.back(), result.successes);
 }
 
 TEST(PlanVerifierTest, StopsAtTheFailureThatPutsTheThresholdOutOfReach) {
@@ -144,6 +176,8 @@ TEST(PlanVerifierTest, WorkerProcessesCountTheSameRuns) {
   }
   ASSERT_EQ(scene.evaluator.threads(), 2u);
   for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(byThreads[0][i].entered, byThreads[1][i].entered) << "verification " << i;
+    EXPECT_EQ(byThreads[0][i].gotThrough, byThreads[1][i].gotThrough) << "verification " << i;
     EXPECT_EQ(byThreads[0][i].runs, byThreads[1][i].runs) << "verification " << i;
     EXPECT_EQ(byThreads[0][i].successes, byThreads[1][i].successes) << "verification " << i;
     EXPECT_EQ(byThreads[0][i].passed, byThreads[1][i].passed) << "verification " << i;

@@ -100,9 +100,10 @@ class MotionEvaluator {
   unsigned threads() const { return workers_ ? static_cast<unsigned>(workers_->size()) + 1 : 1; }
   /// Executes the whole plan `controls` once per seed in sampled worlds, as `kautham validate`
   /// does (physics::execute, a std::mt19937_64 seeded by it), over the threads() processes;
-  /// whether each reached the goal, in the order of `seeds`, the same for any threads().
-  std::vector<bool> runExecutions(const std::vector<physics::ControlStep>& controls,
-                                  const std::vector<std::uint64_t>& seeds);
+  /// whether each reached the goal and how far through the plan it got, in the order of
+  /// `seeds`, the same for any threads().
+  std::vector<ExecutionOutcome> runExecutions(const std::vector<physics::ControlStep>& controls,
+                                              const std::vector<std::uint64_t>& seeds);
 
   /// Runs the request's particle motions: start poses drawn from its pose belief, the robot
   /// from its robot spread, contact parameters and control noise from the problem's

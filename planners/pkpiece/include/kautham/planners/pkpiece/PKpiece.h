@@ -188,6 +188,14 @@ class PKpiece : public ompl::base::Planner,
   /// At the deadline a verification not yet decided does not pass, and the fresh executions
   /// made so far give the estimate (the verification's own when there are none).
   std::optional<VerifiedPlan> verifyPlan(Motion* end);
+  /// After the plan ending with `end` failed verification (learnFromExecutions): each of its
+  /// motions takes as belief the mean of a Beta posterior, its particles' belief counting as
+  /// n_p runs and the executions that began its control (all its rejected plans' so far) as
+  /// the rest; then refreshPathBeliefs.
+  void learnFromExecutions(Motion* end, const VerificationResult& result);
+  /// Recomputes the current tree's path beliefs from its motions' beliefs, the cells' belief
+  /// sums, and the motions the goal bias may expand from.
+  void refreshPathBeliefs();
   /// The plan ending with `end` as an execution runs it: one control per segment.
   static std::vector<physics::ControlStep> planControls(const Motion* end);
   /// Records the collected plan (verified_, not empty) that succeeded most often over all its

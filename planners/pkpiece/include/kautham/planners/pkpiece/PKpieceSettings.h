@@ -130,6 +130,14 @@ struct PKpieceSettings {
   /// A plan that fails verification starts the tree afresh: grown on, the tree mostly reaches
   /// the goal again through the rejected plan's pushes.
   bool restartOnRejection;
+  /// A plan that fails verification teaches the tree: each of its motions weighs the
+  /// executions that ran through it into its belief, its particles' belief counting as n_p
+  /// runs (a Beta posterior), and every path through it takes the new belief. The particles
+  /// judge a motion from a fitted spread of where its parent's particles ended and, with
+  /// certainAfter, by a few of them; executions carry everything before it. So the tree turns
+  /// from a push that its particles passed and executions do not, and stops offering plans
+  /// through it for verification.
+  bool learnFromExecutions;
   /// Each tree grows in a process of its own, with random streams of its own (a function of
   /// the seed and the tree's index), `--threads` of them at once; the search ends with the
   /// first tree, in index order, that ends it (a verified plan, or the time). The same plan for
@@ -407,6 +415,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(0)
                    .describe("start the tree afresh when a plan fails verification (grown on, "
                              "the tree mostly reaches the goal through the same pushes again)"))
+          .add(&S::learnFromExecutions,
+               Parameter::flag("learn_from_executions")
+                   .byDefault(0)
+                   .describe("when a plan fails verification, each of its motions weighs the "
+                             "executions that ran through it into its belief (its particles "
+                             "counting as n_p runs), and the paths through it take the new "
+                             "beliefs"))
           .add(&S::parallelTrees,
                Parameter::flag("parallel_trees")
                    .byDefault(0)

@@ -42,4 +42,12 @@ struct ParticleResult {
   unsigned goalFrom = 0;
 };
 
+/// What one execution of a whole plan gave (PlanVerifier): how far through the plan it got.
+struct ExecutionOutcome {
+  bool reached = false;  ///< valid all along and ended in the goal
+  /// The plan's controls it ran without breaking a rule: the index of the control during which
+  /// it broke one, or all of them (reached, or valid to the end and short of the goal).
+  unsigned controlsPassed = 0;
+};
+
 }  // namespace kautham::planners

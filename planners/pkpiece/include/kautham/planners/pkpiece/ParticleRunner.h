@@ -43,6 +43,8 @@ class ParticleRunner {
   /// run in any process with a copy of the context.
   physics::ExecutionResult execute(const std::vector<physics::ControlStep>& controls,
                                    std::uint64_t seed);
+  /// How far an execution of a plan of `controls` controls got (ExecutionOutcome).
+  static ExecutionOutcome outcomeOf(const physics::ExecutionResult& run, std::size_t controls);
 
   physics::PlanningContext& context() { return context_; }
   std::size_t stateSize() const { return stateSize_; }

@@ -39,10 +39,11 @@ class ParticleWorkers {
   /// the workers did is added to the context's propagator counters, so statistics count it.
   std::vector<ParticleResult> run(const std::vector<ParticleJob>& jobs);
   /// Executes the whole plan `controls` once per seed, in sampled worlds (physics::execute with
-  /// a std::mt19937_64 seeded by it), in workers and inline; whether each run reached the goal,
-  /// in the order of `seeds`. A run gives the same answer in any process.
-  std::vector<bool> execute(const std::vector<physics::ControlStep>& controls,
-                            const std::vector<std::uint64_t>& seeds);
+  /// a std::mt19937_64 seeded by it), in workers and inline; whether each run reached the goal
+  /// and how far through the plan it got, in the order of `seeds`. A run gives the same answer
+  /// in any process.
+  std::vector<ExecutionOutcome> execute(const std::vector<physics::ControlStep>& controls,
+                                        const std::vector<std::uint64_t>& seeds);
 
   std::size_t size() const { return workers_.size(); }
   /// The workers' process ids (for tests).

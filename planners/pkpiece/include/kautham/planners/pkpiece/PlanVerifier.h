@@ -16,7 +16,13 @@ struct VerificationResult {
   unsigned successes = 0;  ///< of those, valid all along and ending in the goal
   bool passed = false;     ///< the success rate reaches the threshold over all the runs asked
   bool cutShort = false;   ///< the deadline passed before the count was decided
+  /// Per control of the plan: the runs that began it, and of those the runs that got through
+  /// it without breaking a rule (through the last control: that ended in the goal).
+  std::vector<unsigned> entered;
+  std::vector<unsigned> gotThrough;
   double rate() const { return runs == 0 ? 0.0 : static_cast<double>(successes) / runs; }
+  /// Adds one run of a plan of entered.size() controls to the counts.
+  void add(const ExecutionOutcome& run);
 };
 
 /// Executes a whole plan open loop in worlds sampled from the problem's uncertainty, as
