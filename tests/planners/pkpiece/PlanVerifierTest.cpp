@@ -86,11 +86,11 @@ TEST(PlanVerifierTest, CountsHowFarThroughThePlanEachRunGot) {
   for (unsigned i = 0; i < 12; ++i) {
     std::mt19937_64 rng(core::runSeed(kSeedBase, i));
     const physics::ExecutionResult run = physics::execute(scene.context, plan.controls, rng, true);
-    const std::size_t reached = run.brokenInControl ? *run.brokenInControl : controls - 1;
+    const std::size_t lastBegun = run.brokenInControl ? *run.brokenInControl : controls - 1;
     broken += run.brokenInControl ? 1 : 0;
-    for (std::size_t c = 0; c <= reached; ++c) {
+    for (std::size_t c = 0; c <= lastBegun; ++c) {
       ++entered[c];
-      if (c < reached || (!run.brokenInControl && run.reachedGoal)) ++gotThrough[c];
+      if (c < lastBegun || (!run.brokenInControl && run.reachedGoal)) ++gotThrough[c];
     }
   }
   ASSERT_GT(broken, 0u) << "some of the 12 runs should break a rule on the way";
