@@ -252,10 +252,13 @@ void PKpiece::addMotion(Motion* motion) {
 
   treeBestRank_ = std::min(treeBestRank_, motion->goalDistance);
   if (!closest_ || motion->goalDistance < closest_->goalDistance) closest_ = motion;
+  if (mayEndAPlan(*motion)) keepIfNear(goalStarts_, motion);
+}
+
+bool PKpiece::mayEndAPlan(const Motion& motion) const {
   // Only a motion whose path is believed at least as much as a solution must be can end
   // one: the goal bias expands from those.
-  if (!settings_.pathBelief || motion->pathBelief >= settings_.goalConfidence)
-    keepIfNear(goalStarts_, motion);
+  return !settings_.pathBelief || motion.pathBelief >= settings_.goalConfidence;
 }
 
 void PKpiece::keepIfNear(std::vector<Motion*>& nearest, Motion* motion) {
@@ -812,8 +815,7 @@ void PKpiece::refreshPathBeliefs() {
   }
   goalStarts_.clear();
   for (std::size_t i = treeStart_; i < motions_.size(); ++i)
-    if (!settings_.pathBelief || motions_[i]->pathBelief >= settings_.goalConfidence)
-      keepIfNear(goalStarts_, motions_[i].get());
+    if (mayEndAPlan(*motions_[i])) keepIfNear(goalStarts_, motions_[i].get());
   grid_.updateAll();
 }
 

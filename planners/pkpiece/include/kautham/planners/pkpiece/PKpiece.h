@@ -76,6 +76,9 @@ class PKpiece : public ompl::base::Planner,
   void tallyBrokenRule(const NominalRun& run, bool steered);
   /// Adds `motion` to a list of the motions nearest the goal, nearest first, kept short.
   static void keepIfNear(std::vector<Motion*>& nearest, Motion* motion);
+  /// Whether a plan could end after `motion` (its path belief reaches goalConfidence): the goal
+  /// bias expands only from such motions.
+  bool mayEndAPlan(const Motion& motion) const;
   Motion* selectMotion();
   Motion* selectInCell(const CellData& cell);
   Motion* nearGoalMotion();
