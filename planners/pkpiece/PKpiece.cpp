@@ -15,6 +15,7 @@
 #include "PKpieceMotion.h"
 #include "kautham/physics/WorldStateSpace.h"
 #include "kautham/planners/BeliefVertex.h"
+#include "kautham/planners/pkpiece/ExecutionBelief.h"
 
 namespace kautham::planners {
 
@@ -715,6 +716,7 @@ PKpiece::Motion* PKpiece::addPiece(Motion* parent, const Candidate& chosen,
   motion->parent = parent;
   motion->belief = chosen.verdict.belief();
   motion->particleBelief = motion->belief;
+  motion->particleRuns = chosen.verdict.particles;
   // Every piece of one candidate shares its belief: multiply it in once.
   motion->pathBelief = fromPathBelief * motion->belief;
   motion->goalDistance = steering_.rankDistance(values);
@@ -785,7 +787,6 @@ void PKpiece::learnFromExecutions(Motion* end, const VerificationResult& result)
   std::vector<Motion*> chain;
   for (Motion* m = end; m->parent; m = m->parent) chain.push_back(m);
   std::reverse(chain.begin(), chain.end());
-  const double prior = settings_.particles;  // the particles' belief counts as n_p runs
   std::size_t control = 0;
   for (std::size_t i = 0; i < chain.size(); ++i) {
     if (i > 0 && chain[i]->expansion != chain[i - 1]->expansion) ++control;
@@ -793,8 +794,8 @@ void PKpiece::learnFromExecutions(Motion* end, const VerificationResult& result)
     Motion& m = *chain[i];
     m.executionsThrough += result.entered[control];
     m.executionsPassed += result.gotThrough[control];
-    if (m.executionsThrough == 0 && prior <= 0.0) continue;
-    m.belief = (prior * m.particleBelief + m.executionsPassed) / (prior + m.executionsThrough);
+    m.belief = beliefAfterExecutions(m.particleBelief, m.particleRuns, m.executionsThrough,
+                                     m.executionsPassed);
   }
   refreshPathBeliefs();
 }

@@ -19,6 +19,9 @@ struct PKpiece::Motion {
   /// Its particles' b, before executions of rejected plans through it were weighed in
   /// (learnFromExecutions).
   double particleBelief = 1.0;
+  /// The particles that judged it: n_p, or fewer when the first certain_after all succeeded.
+  /// As many runs are what particleBelief weighs against executions (learnFromExecutions).
+  unsigned particleRuns = 0;
   unsigned executionsThrough = 0;  ///< rejected plans' executions that began its candidate
   unsigned executionsPassed = 0;   ///< of those, the ones that got through it
   double pathBelief = 1.0;         ///< product of the candidates' beliefs from the root to here

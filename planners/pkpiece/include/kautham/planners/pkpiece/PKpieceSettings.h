@@ -420,8 +420,8 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .byDefault(0)
                    .describe("when a plan fails verification, each of its motions weighs the "
                              "executions that ran through it into its belief (its particles "
-                             "counting as n_p runs), and the paths through it take the new "
-                             "beliefs"))
+                             "counting as the runs they were: n_p, or certain_after), and the "
+                             "paths through it take the new beliefs"))
           .add(&S::parallelTrees,
                Parameter::flag("parallel_trees")
                    .byDefault(0)
