@@ -9,13 +9,14 @@
 # seed 1): with KPIECE for files written for Kautham's ODE planners (omplODE..., ...2DPlanner,
 # ...ChainPlanner, ...CarPlanner), with the file's planner otherwise. Writes a Markdown table:
 # each problem, its planner, whether it loads and plans (with the rejection counts of a run that
-# does not solve), and the first message of a failure (or the first warning). Other XML files
-# (benchmark definitions, synergy trees) are listed as not problems.
+# does not solve), and the first message of a failure (or the first warning). Kautham's
+# benchmark files (root <Benchmark>) are run by `kautham bench --file`, one run per planner of
+# S seconds. Other XML files (synergy trees) are listed as not problems.
 # Extra options for both commands: KAUTHAM_ARGS="--package-path NAME=DIR ...".
-# The exit code is 0 when every problem loads, 1 otherwise.
+# The exit code is 0 when every problem loads and every benchmark file runs, 1 otherwise.
 set -uo pipefail
 
-usage() { sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
 [ $# -ge 1 ] || usage
 dir=$1; shift
 time_limit=10
@@ -38,10 +39,27 @@ dir=$(cd "$dir" && pwd)
 cell() { head -c 400 | tr '\n|' ' /' | sed "s#$dir/##g; s#  *# #g; s# *\$##"; }
 
 rows=()
-problems=0; loaded=0; planned=0; solved=0; others=0
+problems=0; loaded=0; planned=0; solved=0; others=0; benchmarks=0; ran=0
 while IFS= read -r file; do
   rel=${file#"$dir"/}
   rootTag=$(grep -v '^\s*<?xml' "$file" | grep -v '^\s*<!--' | grep -o -m1 '<[A-Za-z][A-Za-z]*' | tr -d '<')
+  if [ "$rootTag" = "Benchmark" ]; then
+    # A Kautham benchmark file: its planners on its first problem, one run each.
+    benchmarks=$((benchmarks + 1))
+    out_dir=$(mktemp -d)
+    bench_out=$(timeout $((time_limit * 20 + 120)) "$kautham" bench --file "$file" --runs 1 --time "$time_limit" -o "$out_dir" 2>&1)
+    bench_rc=$?
+    rm -rf "$out_dir"
+    first_warning=$(printf '%s\n' "$bench_out" | grep -m1 '^warning' | sed 's/^warning: //' | cell)
+    if [ $bench_rc -eq 0 ]; then
+      ran=$((ran + 1))
+      result="runs: $(printf '%s\n' "$bench_out" | grep -m1 '^runs' | sed 's/^runs *//; s/^[0-9]*: [0-9]* made now, 0 resumed; //' | cell)"
+    else
+      result="**error** (exit $bench_rc): $(printf '%s\n' "$bench_out" | grep -m1 '^error' | cell)"
+    fi
+    rows+=("| $rel | | benchmark file | \`kautham bench --file --runs 1 --time $time_limit\`: $result | $first_warning |")
+    continue
+  fi
   if [ "$rootTag" != "Problem" ]; then
     others=$((others + 1))
     rows+=("| $rel | | not a problem file (root <$rootTag>) | | |")
@@ -86,7 +104,7 @@ done < <(find "$dir" -name '*.xml' -not -path '*/models/*' | sort)
   echo "| --- | --- | --- | --- | --- |"
   printf '%s\n' "${rows[@]}"
   echo
-  echo "$problems problem files: $loaded load, $planned planned, $solved solved; $others other XML files."
+  echo "$problems problem files: $loaded load, $planned planned, $solved solved; $benchmarks benchmark files, $ran run by \`kautham bench\`; $others other XML files."
 } > "${output:-/dev/stdout}"
 [ -n "$output" ] && echo "kautham-compat: wrote $output ($problems problems, $loaded load, $solved solved)" >&2
-[ "$loaded" -eq "$problems" ]
+[ "$loaded" -eq "$problems" ] && [ "$ran" -eq "$benchmarks" ]

@@ -171,7 +171,7 @@ std::vector<BenchConfig> configsInOrder(const CLI::App& command, const BenchOpti
   for (const CLI::Option* option : command.parse_order()) {
     if (option->check_lname("planner")) {
       const std::string& name = options.planners.at(planner++);
-      configs.push_back({name, name, {}, {}});
+      configs.push_back({name, name, {}, {}, {}});
     } else if (option->check_lname("config")) {
       configs.push_back(parseConfig(options.configs.at(config++)));
     }
@@ -226,7 +226,8 @@ void addSpecOptions(CLI::App& command, BenchOptions& options) {
   command.add_option(
       "--file", options.file,
       "benchmark file (JSON): name, description, problems, configs, runs, seed, time, "
-      "threads, validate; the options below override it");
+      "threads, validate; or, named *.xml, Kautham's <Benchmark> file (docs/bench.md); the "
+      "options below override it");
   command.add_option("--planner", options.planners, "a planner to run, shown under its own name")
       ->allow_extra_args(false);
   command

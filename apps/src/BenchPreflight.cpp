@@ -4,7 +4,9 @@
 
 #include <fmt/format.h>
 
+#include "KauthamPlanners.h"
 #include "ParameterOverrides.h"
+#include "PlannerFromFile.h"
 #include "StartCheck.h"
 #include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
@@ -14,12 +16,18 @@ namespace kautham::apps {
 
 namespace {
 
-double checkConfig(const BenchSpec& spec, core::Problem problem, const BenchConfig& config) {
+double checkConfig(const BenchSpec& spec, core::Problem problem, const BenchConfig& config,
+                   const std::vector<std::filesystem::path>& modelDirs) {
+  // A Kautham benchmark's entry: its file's planner, mapped as `plan --planner-from` maps it.
+  std::optional<std::string> planner = config.planner;
+  if (config.plannerFile) {
+    problem = withPlannerOf(std::move(problem), *config.plannerFile, modelDirs);
+    planner = plannerToUse(problem, std::nullopt, /*lenient=*/false);
+  }
   try {
     core::applyPhysicsOverrides(problem.physics, config.physics);
-    const planners::PlanRequest request =
-        planners::makeRequest(problem, config.planner,
-                              parameterOverrides(config.sets, spec.time, spec.threads), spec.seed);
+    const planners::PlanRequest request = planners::makeRequest(
+        problem, planner, parameterOverrides(config.sets, spec.time, spec.threads), spec.seed);
     makeCheckedContext(problem, 0, request);  // builds the world and checks the start state
     return request.timeLimit();
   } catch (const std::invalid_argument& e) {  // the command line's part: planner, --set, physics
@@ -40,7 +48,7 @@ Preflight preflight(const BenchSpec& spec) {
       throw core::InputError({file, 0}, "the problem has no query to plan");
     std::vector<double>& limits = result.timeLimits.emplace_back();
     for (const BenchConfig& config : spec.configs)
-      limits.push_back(checkConfig(spec, problem, config));
+      limits.push_back(checkConfig(spec, problem, config, modelDirs));
   }
   return result;
 }

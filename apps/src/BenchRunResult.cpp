@@ -45,6 +45,7 @@ json runSetup(const BenchSpec& spec, const RunKey& key, double timeLimit) {
                 {"validate_runs", spec.validate}};
   // Only when given: the results of earlier campaigns, without the key, still resume.
   if (!config.physics.empty()) setup["physics"] = config.physics;
+  if (config.plannerFile) setup["planner_file"] = config.plannerFile->string();
   return setup;
 }
 

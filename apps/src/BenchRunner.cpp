@@ -139,13 +139,18 @@ class BenchRunner {
   }
 
   std::vector<std::string> planCommand(const RunKey& key) const {
-    std::vector<std::string> command{
-        options_.program.string(), "plan",   spec_.problems[key.problem].string(), "--planner",
-        config(key).planner,       "--seed", std::to_string(spec_.seed + key.run)};
+    const BenchConfig& c = config(key);
+    std::vector<std::string> command{options_.program.string(), "plan",
+                                     spec_.problems[key.problem].string()};
+    if (c.plannerFile)
+      command.insert(command.end(), {"--planner-from", c.plannerFile->string()});
+    else
+      command.insert(command.end(), {"--planner", c.planner});
+    command.insert(command.end(), {"--seed", std::to_string(spec_.seed + key.run)});
     if (spec_.time) command.insert(command.end(), {"--time", fmt::format("{}", *spec_.time)});
     if (spec_.threads) command.insert(command.end(), {"--threads", std::to_string(*spec_.threads)});
-    for (const std::string& set : config(key).sets) command.insert(command.end(), {"--set", set});
-    for (const std::string& physics : config(key).physics)
+    for (const std::string& set : c.sets) command.insert(command.end(), {"--set", set});
+    for (const std::string& physics : c.physics)
       command.insert(command.end(), {"--physics", physics});
     for (const std::string& dir : spec_.modelDirs)
       command.insert(command.end(), {"--model-dir", dir});

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "JsonFileText.h"
+#include "KauthamBenchSpec.h"
 #include "kautham/core/InputError.h"
 
 namespace kautham::apps {
@@ -188,7 +189,10 @@ BenchConfig parseConfig(const std::string& text) {
 }
 
 BenchSpec makeBenchSpec(const BenchArguments& arguments) {
-  BenchSpec spec = arguments.file ? BenchFileReader(*arguments.file).read() : BenchSpec{};
+  BenchSpec spec;
+  if (arguments.file)
+    spec = arguments.file->extension() == ".xml" ? kauthamBenchSpec(*arguments.file)
+                                                 : BenchFileReader(*arguments.file).read();
   if (!arguments.problems.empty())
     spec.problems.assign(arguments.problems.begin(), arguments.problems.end());
   if (!arguments.configs.empty()) spec.configs = arguments.configs;

@@ -20,6 +20,9 @@ struct BenchConfig {
   /// NAME=VALUE attributes of the problems' <Physics> (`kautham plan --physics`): another
   /// solver setting measured without copies of the files.
   std::vector<std::string> physics;
+  /// Set for a Kautham benchmark file's entries: the planner and its parameters are those of
+  /// this problem file's <Planner> (`kautham plan --planner-from`); `planner` is its <Name>.
+  std::optional<std::filesystem::path> plannerFile;
 };
 
 struct BenchSpec {
@@ -51,8 +54,9 @@ struct BenchArguments {
   std::vector<std::string> modelDirs;
 };
 
-/// The spec from the file (if any) and the command line. Throws core::InputError for a bad
-/// file (naming it and the line) and std::invalid_argument for a bad command-line value.
+/// The spec from the file (if any) and the command line. The file is JSON, or, named *.xml, a
+/// Kautham benchmark file (KauthamBenchSpec.h). Throws core::InputError for a bad file (naming
+/// it and the line) and std::invalid_argument for a bad command-line value.
 BenchSpec makeBenchSpec(const BenchArguments& arguments);
 
 /// `--config "pKP=p-KPIECE:uncertainty=0"`: name, planner and the overrides, ':'-separated.

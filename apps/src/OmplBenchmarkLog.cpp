@@ -64,9 +64,12 @@ std::vector<Planner> plannersOf(const std::vector<json>& results) {
 std::string describeSetup(const json& setup) {
   std::string sets;
   for (const json& s : setup.at("set")) sets += " " + s.get<std::string>();
-  return fmt::format("planner {}{}, time limit {} s, threads {}, {} executions per solved plan",
-                     setup.at("planner").get<std::string>(), sets.empty() ? "" : ", --set" + sets,
-                     number(setup.at("time_limit")),
+  // A Kautham benchmark's entry plans with its own file's <Planner>: the log says which file.
+  const std::string from =
+      setup.contains("planner_file") ? " of " + setup.at("planner_file").get<std::string>() : "";
+  return fmt::format("planner {}{}{}, time limit {} s, threads {}, {} executions per solved plan",
+                     setup.at("planner").get<std::string>(), from,
+                     sets.empty() ? "" : ", --set" + sets, number(setup.at("time_limit")),
                      setup.at("threads").is_null() ? "1" : setup.at("threads").dump(),
                      setup.at("validate_runs").dump());
 }

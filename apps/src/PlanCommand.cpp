@@ -21,6 +21,7 @@
 #include "ParameterOverrides.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
+#include "PlannerFromFile.h"
 #include "SeedOption.h"
 #include "StartCheck.h"
 #include "kautham/core/PhysicsOverrides.h"
@@ -35,6 +36,7 @@ std::atomic<bool> interrupted{false};
 struct PlanOptions {
   std::string problem;
   std::optional<std::string> planner;
+  std::string plannerFrom;  ///< --planner-from: another problem file whose <Planner> to use
   std::optional<double> time;
   std::optional<unsigned> threads;
   std::uint32_t seed = 1;
@@ -169,6 +171,8 @@ int runPlan(const PlanOptions& options) {
   applyPackagePaths(options.packagePaths);
   std::vector<std::filesystem::path> modelDirs(options.modelDirs.begin(), options.modelDirs.end());
   core::Problem problem = core::loadProblem(options.problem, modelDirs);
+  if (!options.plannerFrom.empty())
+    problem = withPlannerOf(std::move(problem), options.plannerFrom, modelDirs);
   core::applyPhysicsOverrides(problem.physics, options.physics);
   if (!options.physics.empty())
     fmt::print("physics   {} (--physics, over the file's <Physics>)\n",
@@ -221,7 +225,13 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
   auto options = std::make_shared<PlanOptions>();
   CLI::App* command = app.add_subcommand("plan", "Plan a query of a problem file");
   command->add_option("problem", options->problem, "problem file (XML)")->required();
-  command->add_option("--planner", options->planner, "planner name (see `kautham planners`)");
+  CLI::Option* planner =
+      command->add_option("--planner", options->planner, "planner name (see `kautham planners`)");
+  command
+      ->add_option("--planner-from", options->plannerFrom,
+                   "plan with the planner and parameters of another problem file's <Planner> "
+                   "(this problem's scene and query), as a Kautham benchmark file does")
+      ->excludes(planner);
   command->add_option("--time", options->time, "planning time limit in seconds")
       ->check(CLI::Range(0.01, 86400.0));
   command->add_option("--threads", options->threads,

@@ -91,6 +91,12 @@ class ProblemReader {
   }
 
   Problem read() {
+    const XMLElement* first = xml_.anyRoot();
+    if (first && std::string(first->Name()) == "Benchmark")
+      xml_.fail(*first,
+                "a Kautham benchmark file, not a problem: run it with `kautham bench "
+                "--file " +
+                    xml_.file().string() + "`");
     const XMLElement& root = xml_.root("Problem");
     if (root.Attribute("topology"))
       warning(xml_.at(root).str() + ": <Problem topology> is used by Kautham's GUI only; ignored");

@@ -23,6 +23,8 @@ class XmlReader {
 
   /// The root element, which must be named `expectedName`.
   const tinyxml2::XMLElement& root(const char* expectedName) const;
+  /// The root element whatever its name (nullptr for none), to tell one kind of file from another.
+  const tinyxml2::XMLElement* anyRoot() const { return document_.RootElement(); }
 
   SourceLocation at(const tinyxml2::XMLElement& element) const;
   [[noreturn]] void fail(const tinyxml2::XMLElement& element, const std::string& message) const;
