@@ -11,6 +11,7 @@
 #include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/planners/PlanRequest.h"
+#include "kautham/planners/Solve.h"
 
 namespace kautham::apps {
 
@@ -28,7 +29,10 @@ double checkConfig(const BenchSpec& spec, core::Problem problem, const BenchConf
     core::applyPhysicsOverrides(problem.physics, config.physics);
     const planners::PlanRequest request = planners::makeRequest(
         problem, planner, parameterOverrides(config.sets, spec.time, spec.threads), spec.seed);
-    makeCheckedContext(problem, 0, request);  // builds the world and checks the start state
+    // Builds the world and checks the start state; then the planner, whose own checks of its
+    // settings together (p-KPIECE's parallel_trees with plans > 1, ...) come when it is made.
+    const auto context = makeCheckedContext(problem, 0, request);
+    planners::makePlanner(*context, request);
     return request.timeLimit();
   } catch (const std::invalid_argument& e) {  // the command line's part: planner, --set, physics
     throw std::invalid_argument(fmt::format("{}, configuration {} (planner {}): {}",

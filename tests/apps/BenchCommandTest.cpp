@@ -367,6 +367,16 @@ TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
       kautham("bench problems/pusher_free.xml --config 'x=KPIECE:goal_bias=7' " + out());
   EXPECT_EQ(set.exitCode, 2);
   EXPECT_NE(set.output.find("goal_bias"), std::string::npos) << set.output;
+  // Settings each valid but not together: the planner's own check, when it is made.
+  const CommandRun together = kautham(
+      "bench problems/kuka_clutter_5.xml --config "
+      "'x=p-KPIECE:particles=0:verify_runs=30:parallel_trees=1:plans=3' --check " +
+      out());
+  EXPECT_EQ(together.exitCode, 2);
+  EXPECT_NE(
+      together.output.find("configuration x (planner p-KPIECE): parallel_trees needs plans 1"),
+      std::string::npos)
+      << together.output;
   // Seeds are 32-bit: the last run's seed (seed + runs - 1) must be one.
   const CommandRun seed = kautham(
       "bench problems/pusher_free.xml --planner KPIECE --seed 4294967295 --runs 2 " + out());
