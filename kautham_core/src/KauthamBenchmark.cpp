@@ -31,6 +31,12 @@ class BenchmarkReader {
   explicit BenchmarkReader(const fs::path& file) : xml_(file) {}
 
   KauthamBenchmark read() {
+    const XMLElement* first = xml_.anyRoot();
+    if (first && std::string(first->Name()) == "Benchmark")
+      if (const XMLElement* second = first->NextSiblingElement("Benchmark"))
+        xml_.fail(*second,
+                  "a second <Benchmark>: Kautham runs a file's benchmarks in turn, "
+                  "`kautham bench --file` runs one; put each in a file of its own");
     const XMLElement& root = xml_.root("Benchmark");
     xml_.allowAttributes(root, {"Name"});
     xml_.allowChildren(root, {"Problem", "Parameter"});

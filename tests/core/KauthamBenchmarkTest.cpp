@@ -124,7 +124,8 @@ TEST_F(KauthamBenchmarkTest, MistakesAreRefusedWithTheFileAndTheLine) {
   // Kautham runs each <Benchmark> of a file in turn; here a file holds one.
   EXPECT_NE(
       errorOf("<Benchmark>\n" + entry + "</Benchmark>\n<Benchmark>\n" + entry + "</Benchmark>\n")
-          .find("a file holds one <Benchmark>"),
+          .find("bench.xml:4: a second <Benchmark>: Kautham runs a file's benchmarks in turn, "
+                "`kautham bench --file` runs one; put each in a file of its own"),
       std::string::npos);
   write("problems/none_named.xml", "<Problem name=\"c\">\n  <Planner/>\n</Problem>\n");
   EXPECT_NE(errorOf("<Benchmark>\n  <Problem File=\"problems/none_named.xml\"/>\n</Benchmark>\n")
