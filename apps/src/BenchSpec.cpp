@@ -122,10 +122,7 @@ class BenchFileReader {
 /// Names become folder names and the planner's line in the OMPL log.
 void checkName(const std::string& name, const std::string& what) {
   const bool safe = !name.empty() && name != "." && name != ".." &&
-                    std::all_of(name.begin(), name.end(), [](char c) {
-                      return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ||
-                             c == '.' || c == '+';
-                    });
+                    std::all_of(name.begin(), name.end(), isNameCharacter);
   if (!safe)
     throw std::invalid_argument(fmt::format(
         "{} '{}': use letters, digits and - _ . + only (it names folders and log entries)", what,
@@ -210,6 +207,11 @@ BenchSpec makeBenchSpec(const BenchArguments& arguments) {
 }
 
 std::string problemName(const std::filesystem::path& problem) { return problem.stem().string(); }
+
+bool isNameCharacter(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ||
+         c == '+';
+}
 
 std::vector<RunKey> allRuns(const BenchSpec& spec) {
   std::vector<RunKey> runs;

@@ -65,6 +65,10 @@ BenchConfig parseConfig(const std::string& text);
 /// A problem's name in output folders and logs: its file's stem.
 std::string problemName(const std::filesystem::path& problem);
 
+/// Whether a name of a benchmark, configuration or problem may hold `c`: letters, digits and
+/// - _ . + (names become folder names and the planner's line in the OMPL log).
+bool isNameCharacter(char c);
+
 /// One run of the benchmark. `index` numbers the runs over problems x configurations x runs in
 /// that order (runs innermost); shards pick runs by it, so it never depends on what ran.
 struct RunKey {

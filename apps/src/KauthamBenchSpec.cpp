@@ -1,7 +1,6 @@
 #include "KauthamBenchSpec.h"
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <set>
 
@@ -21,12 +20,7 @@ namespace fs = std::filesystem;
 std::string usableName(const std::string& name, const core::SourceLocation& where) {
   std::string usable = name;
   std::replace_if(
-      usable.begin(), usable.end(),
-      [](char c) {
-        return !(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' ||
-                 c == '+');
-      },
-      '_');
+      usable.begin(), usable.end(), [](char c) { return !isNameCharacter(c); }, '_');
   if (usable != name)
     core::warning(where.str() + ": name '" + name + "' is used as '" + usable +
                   "' (it names folders and the log's planners)");
