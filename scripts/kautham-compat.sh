@@ -16,8 +16,10 @@
 # The exit code is 0 when every problem loads and every benchmark file runs, 1 otherwise.
 set -uo pipefail
 
-usage() { sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 2; }
+# The header comment above, without its '#'s.
+usage() { awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit "${1:-2}"; }
 [ $# -ge 1 ] || usage
+case $1 in -h | --help) usage 0 ;; esac
 dir=$1; shift
 time_limit=10
 output=""
@@ -25,6 +27,7 @@ while [ $# -gt 0 ]; do
   case $1 in
     --time) time_limit=$2; shift 2 ;;
     -o) output=$2; shift 2 ;;
+    -h | --help) usage 0 ;;
     *) usage ;;
   esac
 done
@@ -93,7 +96,12 @@ while IFS= read -r file; do
   rejected=$(printf '%s\n' "$plan_out" | grep -m1 '^rejected' | sed 's/^rejected *//' | cell)
   case $plan_rc in
     0) solved=$((solved + 1)); result="${prefix}solved ($(printf '%s\n' "$plan_out" | grep -m1 '^solved' | sed 's/^solved *yes in //'))" ;;
-    1) result="${prefix}not solved in $time_limit s ($(printf '%s\n' "$plan_out" | grep -m1 '^replay' | sed 's/^replay *//' | cell)${rejected:+; rejected $rejected})" ;;
+    1)
+      # How far the replay got and what the planner rejected, where it says (a geometric
+      # planner replays nothing).
+      details=$(printf '%s\n' "$plan_out" | grep -m1 '^replay' | sed 's/^replay *//' | cell)
+      [ -n "$rejected" ] && details="${details:+$details; }rejected $rejected"
+      result="${prefix}not solved in $time_limit s${details:+ ($details)}" ;;
     *) result="**error** (exit $plan_rc): $(printf '%s\n' "$plan_out" | grep -m1 '^error' | cell)" ;;
   esac
   rows+=("| $rel | $planner | loads | $result | $first_warning |")
