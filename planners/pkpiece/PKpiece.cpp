@@ -761,7 +761,8 @@ void PKpiece::setDeadline(Clock::time_point deadline) {
 bool PKpiece::pastDeadline() const { return deadline_ && Clock::now() >= *deadline_; }
 
 std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
-  if (!settings_.uncertainty || settings_.verifyRuns == 0) return VerifiedPlan{end, 0, 0};
+  if (!settings_.uncertainty || settings_.verifyRuns == 0)
+    return VerifiedPlan{end, 0, 0, std::nullopt};
   const std::vector<physics::ControlStep> controls = planControls(end);
   ++verifications_;
   const VerificationResult result =
@@ -770,10 +771,16 @@ std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
   if (result.passed) {
     // The first plan to pass is, among all those tried, one whose runs went well: fresh
     // runs, whatever they find, give its estimated success without that bias.
+    if (measureInPlanner_) {
+      // A tree's process has one core; the planner's has them all once the tree is taken in.
+      end->successEstimate = result.rate();
+      return VerifiedPlan{end, result.runs, result.successes, verifier_.streams()};
+    }
     const VerificationResult fresh = verifier_.measure(controls, settings_.verifyRuns);
     verificationRuns_ += fresh.runs;
     end->successEstimate = fresh.runs > 0 ? fresh.rate() : result.rate();
-    return VerifiedPlan{end, result.runs + fresh.runs, result.successes + fresh.successes};
+    return VerifiedPlan{end, result.runs + fresh.runs, result.successes + fresh.successes,
+                        std::nullopt};
   }
   if (result.cutShort) return std::nullopt;  // undecided: the search ends, the plan stays
   ++verificationRejections_;

@@ -82,6 +82,7 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   // This process is a copy of the planner as the search began (with the trees settled since):
   // it counts only its own tree's work.
   reseedForTree(tree);
+  measureInPlanner_ = true;
   // The paths adopted from the trees taken in before this one: how many depends on --threads,
   // so the tree starts without them.
   for (auto& motion : motions_) si_->freeState(motion->state);
@@ -117,6 +118,12 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
                                                       : nullptr;
   pack.put(std::uint64_t{end == TreeEnd::Verified ? verified_.back().runs : 0u});
   pack.put(std::uint64_t{end == TreeEnd::Verified ? verified_.back().successes : 0u});
+  // Where the plan's estimate is to be measured from (measureInPlanner).
+  const std::optional<PlanVerifier::Streams> toMeasure =
+      end == TreeEnd::Verified ? verified_.back().toMeasure : std::nullopt;
+  pack.put(std::uint64_t{toMeasure ? 1u : 0u});
+  pack.put(toMeasure ? toMeasure->seedBase : std::uint64_t{0});
+  pack.put(toMeasure ? toMeasure->nextRun : std::uint64_t{0});
   std::vector<const Motion*> chain;
   for (const Motion* m = last; m; m = m->parent) chain.push_back(m);
   std::reverse(chain.begin(), chain.end());
@@ -159,6 +166,11 @@ PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
   VerifiedPlan plan;
   plan.runs = static_cast<unsigned>(unpack.u64());
   plan.successes = static_cast<unsigned>(unpack.u64());
+  const bool measureHere = unpack.u64() != 0;
+  PlanVerifier::Streams toMeasure;
+  toMeasure.seedBase = unpack.u64();
+  toMeasure.nextRun = unpack.u64();
+  if (measureHere) plan.toMeasure = toMeasure;
   const std::uint64_t length = unpack.u64();
   if (length > kMaxMotions) throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
   const unsigned stateSize = si_->getStateDimension();
@@ -209,7 +221,23 @@ ompl::base::PlannerStatus PKpiece::solveTreeByTree(
   const TreesTaken taken = takeTreesInOrder(trees, order);
   discardedTrees_ += taken.started - taken.takenIn;
   restarts_ += taken.takenIn > 0 ? taken.takenIn - 1 : 0;
+  for (VerifiedPlan& plan : verified_)
+    if (plan.toMeasure) measureInPlanner(plan);
   return finish();
+}
+
+void PKpiece::measureInPlanner(VerifiedPlan& plan) {
+  // The trees' processes are gone (takeTreesInOrder stops them): their cores run the estimate.
+  evaluator_.useWorkers(treeProcesses_);
+  verifier_.resume(*plan.toMeasure);
+  plan.toMeasure.reset();
+  const VerificationResult fresh = verifier_.measure(planControls(plan.end), settings_.verifyRuns);
+  verificationRuns_ += fresh.runs;
+  // Cut short by the deadline before its first run: the verification's own rate stays.
+  if (fresh.runs > 0) plan.end->successEstimate = fresh.rate();
+  plan.runs += fresh.runs;
+  plan.successes += fresh.successes;
+  evaluator_.useWorkers(1);
 }
 
 }  // namespace kautham::planners

@@ -183,6 +183,9 @@ class PKpiece : public ompl::base::Planner,
     Motion* end = nullptr;
     unsigned runs = 0;       ///< its verification and estimate runs (0 without verification)
     unsigned successes = 0;  ///< of those, the ones that succeeded
+    /// Verified in a tree's process, its estimate still to be measured from these streams on
+    /// (measureInPlanner).
+    std::optional<PlanVerifier::Streams> toMeasure;
   };
   /// The plan ending with `end` (a motion that reaches the goal) if it may end the search:
   /// with uncertainty and verifyRuns (with particles or without), only if enough of its sampled
@@ -251,6 +254,9 @@ class PKpiece : public ompl::base::Planner,
                                                const ompl::base::PlannerTerminationCondition& ptc);
   /// Takes a tree's packed result into this planner; how the tree ended.
   TreeEnd settleTree(const std::vector<unsigned char>& result);
+  /// The estimate of the plan a tree's process verified, measured here on every core, with
+  /// the streams the tree would have used: the same runs, the same estimate, in less time.
+  void measureInPlanner(VerifiedPlan& plan);
 
   physics::PlanningContext& context_;
   PKpieceSettings settings_;
@@ -296,10 +302,12 @@ class PKpiece : public ompl::base::Planner,
   Motion* closest_ = nullptr;             ///< the motion nearest the goal over every tree
   double progressRank_ = 0.0;             ///< the rank the current tree last came 1 cm nearer to
   unsigned expansionsSinceProgress_ = 0;  ///< expansions since then (restartAfter)
-  std::size_t treeStart_ = 0;         ///< motions_'s index of the current tree's root (treeMotions)
-  std::uint64_t restarts_ = 0;        ///< times the tree started afresh
-  bool motionBudgetSpent_ = false;    ///< the last solve() ended at maxMotions
-  unsigned treeProcesses_ = 1;        ///< trees grown at once (parallel_trees)
+  std::size_t treeStart_ = 0;       ///< motions_'s index of the current tree's root (treeMotions)
+  std::uint64_t restarts_ = 0;      ///< times the tree started afresh
+  bool motionBudgetSpent_ = false;  ///< the last solve() ended at maxMotions
+  unsigned treeProcesses_ = 1;      ///< trees grown at once (parallel_trees)
+  /// In a tree's process: a verified plan's estimate is left to the planner's process.
+  bool measureInPlanner_ = false;
   std::uint64_t treeSeedBase_ = 0;    ///< tree k's streams derive from this and k (parallel_trees)
   std::uint64_t discardedTrees_ = 0;  ///< trees grown past the one that ended the search
   std::uint64_t grownMotions_ = 0;    ///< motions the trees grew, in every process

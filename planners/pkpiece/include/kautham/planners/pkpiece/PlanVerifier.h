@@ -48,9 +48,19 @@ class PlanVerifier {
   void stopAt(std::optional<Clock::time_point> deadline) { deadline_ = deadline; }
   /// Runs counted from now on draw from streams derived from `seedBase`, from its first on (a
   /// tree of its own, parallel_trees).
-  void reseed(std::uint64_t seedBase) {
-    seedBase_ = seedBase;
-    nextRun_ = 0;
+  void reseed(std::uint64_t seedBase) { resume({seedBase, 0}); }
+  /// Where the runs' streams stand: the runs counted next draw from `nextRun` on, over
+  /// `seedBase`.
+  struct Streams {
+    std::uint64_t seedBase = 0;
+    std::uint64_t nextRun = 0;
+  };
+  Streams streams() const { return {seedBase_, nextRun_}; }
+  /// Runs counted from now on draw from `at` on: another verifier's runs go on here exactly as
+  /// they would have there (a tree's plan measured by the planner's process, parallel_trees).
+  void resume(const Streams& at) {
+    seedBase_ = at.seedBase;
+    nextRun_ = at.nextRun;
   }
 
   /// Runs up to `runs` executions of `controls`; stops as soon as the rate over all `runs`
