@@ -190,7 +190,8 @@ class PKpiece : public ompl::base::Planner,
   /// The plan ending with `end` (a motion that reaches the goal) if it may end the search:
   /// with uncertainty and verifyRuns (with particles or without), only if enough of its sampled
   /// executions succeed (PlanVerifier); then as many fresh executions give its estimated
-  /// success. A plan that fails stays in the tree (restartOnRejection: a new tree follows).
+  /// success (in a tree's process, parallel_trees, they are left to measureInPlanner). A plan
+  /// that fails stays in the tree (restartOnRejection: a new tree follows).
   /// At the deadline a verification not yet decided does not pass, and the fresh executions
   /// made so far give the estimate (the verification's own when there are none).
   std::optional<VerifiedPlan> verifyPlan(Motion* end);
