@@ -771,14 +771,11 @@ std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
   if (result.passed) {
     // The first plan to pass is, among all those tried, one whose runs went well: fresh
     // runs, whatever they find, give its estimated success without that bias.
-    if (measureInPlanner_) {
-      // A tree's process has one core; the planner's has them all once the tree is taken in.
-      end->successEstimate = result.rate();
+    end->successEstimate = result.rate();  // until they do
+    // A tree's process has one core; the planner's has them all once the tree is taken in.
+    if (measureInPlanner_)
       return VerifiedPlan{end, result.runs, result.successes, verifier_.streams()};
-    }
-    const VerificationResult fresh = verifier_.measure(controls, settings_.verifyRuns);
-    verificationRuns_ += fresh.runs;
-    end->successEstimate = fresh.runs > 0 ? fresh.rate() : result.rate();
+    const VerificationResult fresh = measureEstimate(end);
     return VerifiedPlan{end, result.runs + fresh.runs, result.successes + fresh.successes,
                         std::nullopt};
   }
@@ -787,6 +784,14 @@ std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
   end->reachesGoal = false;
   if (settings_.learnFromExecutions) learnFromExecutions(end, result);
   return std::nullopt;
+}
+
+VerificationResult PKpiece::measureEstimate(Motion* end) {
+  const VerificationResult fresh = verifier_.measure(planControls(end), settings_.verifyRuns);
+  verificationRuns_ += fresh.runs;
+  // Cut short by the deadline before its first run: the estimate it had stays.
+  if (fresh.runs > 0) end->successEstimate = fresh.rate();
+  return fresh;
 }
 
 void PKpiece::learnFromExecutions(Motion* end, const VerificationResult& result) {
@@ -834,12 +839,7 @@ ompl::base::PlannerStatus PKpiece::returnBestCollected() {
     if (static_cast<std::uint64_t>(plan.successes) * best->runs >
         static_cast<std::uint64_t>(best->successes) * plan.runs)
       best = &plan;
-  if (verified_.size() > 1) {
-    const VerificationResult fresh =
-        verifier_.measure(planControls(best->end), settings_.verifyRuns);
-    verificationRuns_ += fresh.runs;
-    if (fresh.runs > 0) best->end->successEstimate = fresh.rate();
-  }
+  if (verified_.size() > 1) measureEstimate(best->end);
   recordSolution(best->end, true, best->end->goalDistance);
   return ompl::base::PlannerStatus::EXACT_SOLUTION;
 }

@@ -231,10 +231,7 @@ void PKpiece::measureInPlanner(VerifiedPlan& plan) {
   evaluator_.useWorkers(treeProcesses_);
   verifier_.resume(*plan.toMeasure);
   plan.toMeasure.reset();
-  const VerificationResult fresh = verifier_.measure(planControls(plan.end), settings_.verifyRuns);
-  verificationRuns_ += fresh.runs;
-  // Cut short by the deadline before its first run: the verification's own rate stays.
-  if (fresh.runs > 0) plan.end->successEstimate = fresh.rate();
+  const VerificationResult fresh = measureEstimate(plan.end);
   plan.runs += fresh.runs;
   plan.successes += fresh.successes;
   evaluator_.useWorkers(1);

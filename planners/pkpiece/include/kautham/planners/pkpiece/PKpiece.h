@@ -195,6 +195,9 @@ class PKpiece : public ompl::base::Planner,
   /// At the deadline a verification not yet decided does not pass, and the fresh executions
   /// made so far give the estimate (the verification's own when there are none).
   std::optional<VerifiedPlan> verifyPlan(Motion* end);
+  /// verifyRuns fresh executions of the plan ending with `end`: its estimated success (kept as
+  /// it was when the deadline leaves none), counted in verificationRuns_.
+  VerificationResult measureEstimate(Motion* end);
   /// After the plan ending with `end` failed verification (learnFromExecutions): each of its
   /// motions takes as belief the mean of a Beta posterior, its particles' belief counting as
   /// n_p runs and the executions that began its control (all its rejected plans' so far) as
