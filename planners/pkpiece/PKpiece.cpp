@@ -129,6 +129,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   // ended the search or the time ran out first (their work is not in the other counts).
   addPlannerProgressProperty("discarded_trees INTEGER",
                              [this] { return std::to_string(discardedTrees_); });
+  // parallel_trees: cores lent to a tree still growing once a later one had ended the search,
+  // which would otherwise have waited idle for it (its particles and verifications ran there).
+  addPlannerProgressProperty("lent_cores INTEGER", [this] { return std::to_string(coresLent_); });
   // 1 when the search ended because its trees hold max_motions motions, not at the time limit.
   addPlannerProgressProperty("motion_budget_spent INTEGER",
                              [this] { return std::to_string(motionBudgetSpent_ ? 1 : 0); });
@@ -206,6 +209,7 @@ void PKpiece::resetCounters() {
   restarts_ = 0;
   discardedTrees_ = 0;
   grownMotions_ = 0;
+  coresLent_ = 0;
 }
 
 void PKpiece::setThreads(unsigned threads) {
@@ -886,6 +890,7 @@ ompl::base::PlannerStatus PKpiece::solve(const ompl::base::PlannerTerminationCon
 
 PKpiece::TreeEnd PKpiece::growTree(const ompl::base::PlannerTerminationCondition& ptc) {
   while (!ptc && !outOfMotions() && !pastDeadline() && !patienceSpent()) {
+    useLentCores();
     Motion* from = selectMotion();
     CellData* cell = from->cell;
     Motion* added = expand(from);

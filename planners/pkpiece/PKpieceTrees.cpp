@@ -57,12 +57,12 @@ FailureTally getTally(Unpacker& unpack) {
 
 }  // namespace
 
-std::array<std::uint64_t*, 11> PKpiece::searchCounts() {
+std::array<std::uint64_t*, 12> PKpiece::searchCounts() {
   // One list for packing a tree's counts and adding them up: the two stay in step.
   return {&candidateCount_,   &goalCandidates_, &steeredCandidates_,
           &steeredValid_,     &steeredKept_,    &keptCandidates_,
           &confirmations_,    &verifications_,  &verificationRejections_,
-          &verificationRuns_, &grownMotions_};
+          &verificationRuns_, &grownMotions_,   &coresLent_};
 }
 
 void PKpiece::reseedForTree(std::size_t tree) {
@@ -78,11 +78,14 @@ void PKpiece::reseedForTree(std::size_t tree) {
 }
 
 std::vector<unsigned char> PKpiece::growTreeForSearch(
-    std::size_t tree, const ompl::base::PlannerTerminationCondition& ptc) {
+    std::size_t tree, TreeProcesses::LentCores& lent,
+    const ompl::base::PlannerTerminationCondition& ptc) {
   // This process is a copy of the planner as the search began (with the trees settled since):
   // it counts only its own tree's work.
   reseedForTree(tree);
   measureInPlanner_ = true;
+  lentCores_ = &lent;
+  verifier_.beforeEachBatch([this] { useLentCores(); });
   // The paths adopted from the trees taken in before this one: how many depends on --threads,
   // so the tree starts without them.
   for (auto& motion : motions_) si_->freeState(motion->state);
@@ -207,7 +210,9 @@ PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
 ompl::base::PlannerStatus PKpiece::solveTreeByTree(
     const ompl::base::PlannerTerminationCondition& ptc) {
   TreeProcesses trees(treeProcesses_,
-                      [this, &ptc](std::size_t tree) { return growTreeForSearch(tree, ptc); });
+                      [this, &ptc](std::size_t tree, TreeProcesses::LentCores& lent) {
+                        return growTreeForSearch(tree, lent, ptc);
+                      });
   TreeOrder order;
   order.ends = [](const TreeOrder::Result& result) {
     Unpacker peek(result);
@@ -224,6 +229,16 @@ ompl::base::PlannerStatus PKpiece::solveTreeByTree(
   for (VerifiedPlan& plan : verified_)
     if (plan.toMeasure) measureInPlanner(plan);
   return finish();
+}
+
+void PKpiece::useLentCores() {
+  if (!lentCores_) return;
+  // A tree that holds up the search's end grows alone: a later tree ended it, and the core that
+  // grew that one would wait idle. The workers give the same results as this process alone.
+  if (const unsigned more = lentCores_->collect()) {
+    evaluator_.useWorkers(evaluator_.threads() + more);
+    coresLent_ += more;
+  }
 }
 
 void PKpiece::measureInPlanner(VerifiedPlan& plan) {

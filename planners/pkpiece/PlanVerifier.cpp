@@ -50,14 +50,15 @@ VerificationResult PlanVerifier::count(const std::vector<physics::ControlStep>& 
   VerificationResult result;
   result.entered.assign(controls.size(), 0);
   result.gotThrough.assign(controls.size(), 0);
-  const unsigned processes = evaluator_.threads();
-  const unsigned batch = processes > 1 ? kRunsPerProcess * processes : 1;
   unsigned failures = 0;
   while (result.runs < runs && result.successes < needed && failures <= allowed) {
     if (deadline_ && Clock::now() >= *deadline_) {
       result.cutShort = true;
       break;
     }
+    if (beforeEachBatch_) beforeEachBatch_();
+    const unsigned processes = evaluator_.threads();
+    const unsigned batch = processes > 1 ? kRunsPerProcess * processes : 1;
     // No batch goes past the earliest run that could decide the count: every run handed out
     // is counted, so the work and the streams drawn do not depend on how many processes ran
     // them, and an early stop wastes no run.

@@ -1,8 +1,10 @@
 #include "kautham/planners/pkpiece/TreeProcesses.h"
 
 #include <poll.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
@@ -20,7 +22,16 @@ namespace kautham::planners {
 
 using namespace process_io;
 
-// A result is [n] (uint64) and n bytes; the process then exits with status 0.
+// A result is [n] (uint64) and n bytes; the process then exits with status 0. The other way,
+// each byte the search writes to a tree's socket lends it one core.
+
+unsigned TreeProcesses::LentCores::collect() {
+  unsigned char bytes[64];
+  ssize_t n;
+  do n = ::recv(fd_, bytes, sizeof bytes, MSG_DONTWAIT);
+  while (n < 0 && errno == EINTR);
+  return n > 0 ? static_cast<unsigned>(n) : 0u;  // nothing there, or the search gone
+}
 
 TreeProcesses::TreeProcesses(unsigned processes, Grow grow)
     : processes_(processes == 0 ? 1 : processes), grow_(std::move(grow)) {}
@@ -41,7 +52,8 @@ void TreeProcesses::serve(std::size_t tree, int fd) {
   std::signal(SIGINT, SIG_IGN);
   int code = 0;
   try {
-    const std::vector<unsigned char> result = grow_(tree);
+    LentCores lent(fd);
+    const std::vector<unsigned char> result = grow_(tree, lent);
     const std::uint64_t size = result.size();
     if (writeAll(fd, &size, sizeof size) != Io::Ok ||
         writeAll(fd, result.data(), result.size()) != Io::Ok)
@@ -100,13 +112,39 @@ TreeProcesses::Finished TreeProcesses::reap(std::size_t i) {
 }
 
 void TreeProcesses::stopAll() noexcept {
-  for (const Running& r : running_) {
-    ::kill(r.pid, SIGKILL);
-    ::close(r.fd);
-    int status = 0;
-    waitFor(r.pid, &status, 0);
-  }
+  for (const Running& r : running_) kill(r);
   running_.clear();
+}
+
+void TreeProcesses::stopAfter(std::size_t tree) noexcept {
+  const auto later = [tree](const Running& r) { return r.tree > tree; };
+  for (const Running& r : running_)
+    if (later(r)) kill(r);
+  running_.erase(std::remove_if(running_.begin(), running_.end(), later), running_.end());
+}
+
+void TreeProcesses::kill(const Running& r) noexcept {
+  ::kill(r.pid, SIGKILL);
+  ::close(r.fd);
+  int status = 0;
+  waitFor(r.pid, &status, 0);
+}
+
+void TreeProcesses::lendIdleCores() {
+  unsigned busy = 0;
+  for (const Running& r : running_) busy += 1 + r.lent;
+  while (busy < processes_ && !running_.empty()) {
+    // The earliest of the trees with the fewest cores lent (running_ is in start order).
+    Running* to = &running_.front();
+    for (Running& r : running_)
+      if (r.lent < to->lent) to = &r;
+    const unsigned char core = 1;
+    // A tree that has just ended reads nothing more: its core comes back when it is reaped.
+    // MSG_NOSIGNAL: a closed socket is no reason to die.
+    if (::send(to->fd, &core, 1, MSG_NOSIGNAL | MSG_DONTWAIT) != 1) break;
+    ++to->lent;
+    ++busy;
+  }
 }
 
 }  // namespace kautham::planners

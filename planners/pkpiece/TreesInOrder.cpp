@@ -28,6 +28,12 @@ TreesTaken takeTreesInOrder(TreeProcesses& trees, const TreeOrder& order) {
         firstEnding = std::min(done->tree, firstEnding.value_or(done->tree));
       finished.emplace(done->tree, std::move(done->result));
     }
+    if (firstEnding && !killAt) {
+      // Only the trees before it can still change the plan: the later ones stop, and every
+      // core no tree grows on helps those (their work spread over it gives the same results).
+      trees.stopAfter(*firstEnding);
+      trees.lendIdleCores();
+    }
     for (auto it = finished.find(taken.takenIn); it != finished.end() && !ended;
          it = finished.find(taken.takenIn)) {
       ended = order.takeIn(it->second);

@@ -38,7 +38,7 @@ TEST(TreeProcessesTest, EachTreesResultComesBackWithItsIndex) {
   // Tree k answers k + 1 bytes of value k, from a process of its own: its pid differs from
   // this one's, so the work really ran elsewhere.
   const pid_t self = ::getpid();
-  TreeProcesses trees(2, [self](std::size_t tree) {
+  TreeProcesses trees(2, [self](std::size_t tree, TreeProcesses::LentCores&) {
     std::vector<unsigned char> bytes(tree + 1, static_cast<unsigned char>(tree));
     bytes.push_back(::getpid() != self ? 1 : 0);
     return bytes;
@@ -61,11 +61,12 @@ TEST(TreeProcessesTest, EachTreesResultComesBackWithItsIndex) {
 }
 
 TEST(TreeProcessesTest, AProcessThatDiesWithoutItsResultIsAnErrorNamingItsTree) {
-  TreeProcesses trees(1, [](std::size_t tree) -> std::vector<unsigned char> {
-    if (tree == 1) std::abort();
-    if (tree == 2) throw std::runtime_error("a broken tree");
-    return {1, 2, 3};
-  });
+  TreeProcesses trees(
+      1, [](std::size_t tree, TreeProcesses::LentCores&) -> std::vector<unsigned char> {
+        if (tree == 1) std::abort();
+        if (tree == 2) throw std::runtime_error("a broken tree");
+        return {1, 2, 3};
+      });
   for (std::size_t tree : {1u, 2u}) {
     trees.start(tree);
     try {
@@ -88,10 +89,11 @@ TEST(TreeProcessesTest, TreesStillGrowingAreKilledWhenThePoolGoes) {
   const auto pidFile = [&prefix](std::size_t tree) { return prefix + std::to_string(tree); };
   std::vector<pid_t> pids;
   {
-    TreeProcesses trees(2, [&pidFile](std::size_t tree) -> std::vector<unsigned char> {
-      std::ofstream(pidFile(tree)) << ::getpid() << std::endl;
-      for (;;) std::this_thread::sleep_for(1s);
-    });
+    TreeProcesses trees(
+        2, [&pidFile](std::size_t tree, TreeProcesses::LentCores&) -> std::vector<unsigned char> {
+          std::ofstream(pidFile(tree)) << ::getpid() << std::endl;
+          for (;;) std::this_thread::sleep_for(1s);
+        });
     trees.start(0);
     trees.start(1);
     EXPECT_TRUE(trees.full());

@@ -17,7 +17,7 @@ using namespace std::chrono_literals;
 
 /// Byte 0 of a tree's result: 1 when it ends the search (a verified plan). Byte 1: its index.
 TreeProcesses::Grow trees(std::vector<unsigned char> ending) {
-  return [ending](std::size_t tree) -> std::vector<unsigned char> {
+  return [ending](std::size_t tree, TreeProcesses::LentCores&) -> std::vector<unsigned char> {
     if (tree == 0) std::this_thread::sleep_for(300ms);  // the slowest to finish
     const unsigned char ends = tree < ending.size() ? ending[tree] : 0;
     return {ends, static_cast<unsigned char>(tree)};
@@ -71,6 +71,62 @@ TEST(TreesInOrderTest, OneAtATimeTheTreesAreTakenInTheSameOrder) {
     EXPECT_EQ(taken.order, (std::vector<int>{0, 1, 2, 3})) << processes << " at once";
     EXPECT_LE(taken.counts.started, 3u + processes) << processes << " at once";
   }
+}
+
+/// Tree 0 grows until `wanted` cores are lent to it (at most 30 s); tree 1 ends the search at
+/// once; any later tree grows for ever. Byte 2 of a result: the cores lent to that tree.
+TreeProcesses::Grow treeZeroWaitsForCores(unsigned wanted) {
+  return [wanted](std::size_t tree, TreeProcesses::LentCores& lent) -> std::vector<unsigned char> {
+    if (tree > 1)
+      for (;;) std::this_thread::sleep_for(1s);
+    unsigned cores = 0;
+    const auto guard = std::chrono::steady_clock::now() + 30s;
+    if (tree == 0)
+      while (cores < wanted && std::chrono::steady_clock::now() < guard) {
+        cores += lent.collect();
+        std::this_thread::sleep_for(5ms);
+      }
+    return {static_cast<unsigned char>(tree == 1 ? 1 : 0), static_cast<unsigned char>(tree),
+            static_cast<unsigned char>(cores)};
+  };
+}
+
+TEST(TreesInOrderTest, ATreeHoldingUpTheEndIsLentTheCoreLeftIdle) {
+  // Tree 1 ends the search while tree 0 grows: tree 1's core is lent to tree 0, which without
+  // it would grow on for 30 s. Tree 0 is then taken in, and tree 1 ends the search.
+  unsigned char lentToTreeZero = 0;
+  TreeProcesses processes(2, treeZeroWaitsForCores(1));
+  TreeOrder order;
+  order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
+  order.takeIn = [&lentToTreeZero](const TreeOrder::Result& r) {
+    if (r.at(1) == 0) lentToTreeZero = r.at(2);
+    return r.at(0) == 1;
+  };
+  const auto guard = std::chrono::steady_clock::now() + 60s;  // against a hang, not timing
+  order.stop = [guard] { return std::chrono::steady_clock::now() > guard; };
+  const TreesTaken taken = takeTreesInOrder(processes, order);
+  EXPECT_EQ(taken.takenIn, 2u);
+  EXPECT_EQ(lentToTreeZero, 1);
+}
+
+TEST(TreesInOrderTest, TreesAfterTheOneThatEndsTheSearchStopAndLendTheirCores) {
+  // Three at once: tree 2 would grow for ever, but once tree 1 ends the search it is stopped,
+  // and its core and tree 1's are lent to tree 0.
+  unsigned char lentToTreeZero = 0;
+  TreeProcesses processes(3, treeZeroWaitsForCores(2));
+  TreeOrder order;
+  order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
+  order.takeIn = [&lentToTreeZero](const TreeOrder::Result& r) {
+    if (r.at(1) == 0) lentToTreeZero = r.at(2);
+    return r.at(0) == 1;
+  };
+  const auto guard = std::chrono::steady_clock::now() + 60s;
+  order.stop = [guard] { return std::chrono::steady_clock::now() > guard; };
+  const TreesTaken taken = takeTreesInOrder(processes, order);
+  EXPECT_EQ(taken.started, 3u);
+  EXPECT_EQ(taken.takenIn, 2u);
+  EXPECT_EQ(lentToTreeZero, 2);
+  EXPECT_TRUE(processes.idle());
 }
 
 }  // namespace

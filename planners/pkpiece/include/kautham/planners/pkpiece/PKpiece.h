@@ -22,6 +22,7 @@
 #include "kautham/planners/pkpiece/PKpieceSettings.h"
 #include "kautham/planners/pkpiece/PlanVerifier.h"
 #include "kautham/planners/pkpiece/RobotSpread.h"
+#include "kautham/planners/pkpiece/TreeProcesses.h"
 
 namespace kautham::planners {
 
@@ -251,11 +252,14 @@ class PKpiece : public ompl::base::Planner,
   ompl::base::PlannerStatus solveTreeByTree(const ompl::base::PlannerTerminationCondition& ptc);
   void reseedForTree(std::size_t tree);
   /// The counts a tree's process sends back, each added to the search's.
-  std::array<std::uint64_t*, 11> searchCounts();
+  std::array<std::uint64_t*, 12> searchCounts();
   /// In tree k's process: grows it, and packs how it ended, its counts and its plan (or the
   /// motion nearest the goal) for this process.
-  std::vector<unsigned char> growTreeForSearch(std::size_t tree,
+  std::vector<unsigned char> growTreeForSearch(std::size_t tree, TreeProcesses::LentCores& lent,
                                                const ompl::base::PlannerTerminationCondition& ptc);
+  /// In a tree's process: spreads the particles and verifications over the cores the search
+  /// has lent it since the last call (the same results on any number).
+  void useLentCores();
   /// Takes a tree's packed result into this planner; how the tree ended.
   TreeEnd settleTree(const std::vector<unsigned char>& result);
   /// The estimate of the plan a tree's process verified, measured here on every core, with
@@ -312,6 +316,9 @@ class PKpiece : public ompl::base::Planner,
   unsigned treeProcesses_ = 1;      ///< trees grown at once (parallel_trees)
   /// In a tree's process: a verified plan's estimate is left to the planner's process.
   bool measureInPlanner_ = false;
+  /// In a tree's process: where the cores the search lends it arrive.
+  TreeProcesses::LentCores* lentCores_ = nullptr;
+  std::uint64_t coresLent_ = 0;       ///< cores lent to trees that held up the search's end
   std::uint64_t treeSeedBase_ = 0;    ///< tree k's streams derive from this and k (parallel_trees)
   std::uint64_t discardedTrees_ = 0;  ///< trees grown past the one that ended the search
   std::uint64_t grownMotions_ = 0;    ///< motions the trees grew, in every process

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -46,6 +47,9 @@ class PlanVerifier {
   /// verification so cut does not pass, a measurement gives the rate of the runs it made.
   /// std::nullopt: no deadline.
   void stopAt(std::optional<Clock::time_point> deadline) { deadline_ = deadline; }
+  /// `call` runs before each batch of runs: it may change how many processes the evaluator
+  /// runs them over (cores lent to a tree's process, parallel_trees), which changes no result.
+  void beforeEachBatch(std::function<void()> call) { beforeEachBatch_ = std::move(call); }
   /// Runs counted from now on draw from streams derived from `seedBase`, from its first on (a
   /// tree of its own, parallel_trees).
   void reseed(std::uint64_t seedBase) { resume({seedBase, 0}); }
@@ -83,6 +87,7 @@ class PlanVerifier {
   std::uint64_t seedBase_;
   std::uint64_t nextRun_ = 0;  ///< runs counted so far: every counted run has its own stream
   std::optional<Clock::time_point> deadline_;
+  std::function<void()> beforeEachBatch_;
 };
 
 }  // namespace kautham::planners

@@ -20,9 +20,22 @@ namespace kautham::planners {
 /// never returning into the planner's code. One that dies without its result is an error
 /// (std::runtime_error naming the tree and how it ended), never a hang. The destructor kills
 /// and reaps every process still running.
+///
+/// A core no tree grows on can be lent to a tree still growing (lendIdleCores): the tree's
+/// process learns of it through LentCores and may spread its own work over it.
 class TreeProcesses {
  public:
-  using Grow = std::function<std::vector<unsigned char>(std::size_t tree)>;
+  /// In a tree's process: the cores the search lent it.
+  class LentCores {
+   public:
+    explicit LentCores(int fd) : fd_(fd) {}
+    /// The cores lent since the last call (0 if none); never waits.
+    unsigned collect();
+
+   private:
+    int fd_;
+  };
+  using Grow = std::function<std::vector<unsigned char>(std::size_t tree, LentCores& lent)>;
   struct Finished {
     std::size_t tree = 0;
     std::vector<unsigned char> result;  ///< what grow(tree) returned
@@ -42,6 +55,13 @@ class TreeProcesses {
   std::optional<Finished> wait(std::chrono::milliseconds timeout);
   /// Kills every tree still growing: their results are not wanted.
   void stopAll() noexcept;
+  /// Kills the trees growing after `tree` (whose results are not wanted once it ended the
+  /// search), so that their cores can be lent.
+  void stopAfter(std::size_t tree) noexcept;
+  /// Lends each core that neither a tree nor a core lent before is busy on to the trees still
+  /// growing, one at a time in index order from the fewest lent. Call it only once no tree is
+  /// to start: a lent core stays lent until its tree ends.
+  void lendIdleCores();
 
  private:
   struct Running {
@@ -49,12 +69,14 @@ class TreeProcesses {
     pid_t pid = -1;
     int fd = -1;  ///< this process's end of the tree's socket
     std::vector<unsigned char> bytes;
+    unsigned lent = 0;  ///< cores lent to the tree
   };
 
   [[noreturn]] void serve(std::size_t tree, int fd);
   /// Reads what is there from running_[i]; its result once the process closed its socket.
   std::optional<Finished> read(std::size_t i);
   Finished reap(std::size_t i);
+  void kill(const Running& r) noexcept;
 
   unsigned processes_;
   Grow grow_;

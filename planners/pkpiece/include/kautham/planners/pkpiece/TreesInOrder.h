@@ -36,8 +36,10 @@ struct TreesTaken {
 /// order, whatever order they finish in, until one ends the search: tree k's result waits for
 /// trees 0..k-1, so a later tree's plan is never taken before an earlier tree's, and the plan does
 /// not depend on how many trees grow at once. No tree after one whose result ends the search is
-/// started. Once `order.stop()` holds, the trees get `order.grace` to end, the rest are killed,
-/// and the results in hand are taken in order, those of killed trees passed over.
+/// started, those growing are stopped, and the cores left idle are lent to the trees before it
+/// (TreeProcesses::lendIdleCores). Once `order.stop()` holds, the trees get `order.grace` to end,
+/// the rest are killed, and the results in hand are taken in order, those of killed trees passed
+/// over.
 TreesTaken takeTreesInOrder(TreeProcesses& trees, const TreeOrder& order);
 
 }  // namespace kautham::planners
