@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <stdexcept>
 #include <vector>
 
@@ -236,8 +237,13 @@ void PKpiece::useLentCores() {
   // A tree that holds up the search's end grows alone: a later tree ended it, and the core that
   // grew that one would wait idle. The workers give the same results as this process alone.
   if (const unsigned more = lentCores_->collect()) {
-    evaluator_.useWorkers(evaluator_.threads() + more);
     coresLent_ += more;
+    try {
+      evaluator_.useWorkers(evaluator_.threads() + more);
+    } catch (const std::exception&) {
+      // No process to spare (fork failed): a loan is help, not a need; the tree goes on inline.
+      evaluator_.useWorkers(1);
+    }
   }
 }
 
