@@ -26,7 +26,8 @@ TreeProcesses::Grow trees(std::vector<unsigned char> ending) {
 
 struct Taken {
   TreesTaken counts;
-  std::vector<int> order;  ///< the trees taken in, in the order they were
+  std::vector<int> order;                  ///< the trees taken in, in the order they were
+  std::vector<TreeOrder::Result> results;  ///< their results, in the same order
 };
 
 Taken takeIn(TreeProcesses& processes) {
@@ -35,6 +36,7 @@ Taken takeIn(TreeProcesses& processes) {
   order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
   order.takeIn = [&taken](const TreeOrder::Result& r) {
     taken.order.push_back(r.at(1));
+    taken.results.push_back(r);
     return r.at(0) == 1;
   };
   const auto guard = std::chrono::steady_clock::now() + 60s;  // against a hang, not timing
@@ -94,38 +96,20 @@ TreeProcesses::Grow treeZeroWaitsForCores(unsigned wanted) {
 TEST(TreesInOrderTest, ATreeHoldingUpTheEndIsLentTheCoreLeftIdle) {
   // Tree 1 ends the search while tree 0 grows: tree 1's core is lent to tree 0, which without
   // it would grow on for 30 s. Tree 0 is then taken in, and tree 1 ends the search.
-  unsigned char lentToTreeZero = 0;
   TreeProcesses processes(2, treeZeroWaitsForCores(1));
-  TreeOrder order;
-  order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
-  order.takeIn = [&lentToTreeZero](const TreeOrder::Result& r) {
-    if (r.at(1) == 0) lentToTreeZero = r.at(2);
-    return r.at(0) == 1;
-  };
-  const auto guard = std::chrono::steady_clock::now() + 60s;  // against a hang, not timing
-  order.stop = [guard] { return std::chrono::steady_clock::now() > guard; };
-  const TreesTaken taken = takeTreesInOrder(processes, order);
-  EXPECT_EQ(taken.takenIn, 2u);
-  EXPECT_EQ(lentToTreeZero, 1);
+  const Taken taken = takeIn(processes);
+  ASSERT_EQ(taken.order, (std::vector<int>{0, 1}));
+  EXPECT_EQ(taken.results[0].at(2), 1);  // one core lent to tree 0
 }
 
 TEST(TreesInOrderTest, TreesAfterTheOneThatEndsTheSearchStopAndLendTheirCores) {
   // Three at once: tree 2 would grow for ever, but once tree 1 ends the search it is stopped,
   // and its core and tree 1's are lent to tree 0.
-  unsigned char lentToTreeZero = 0;
   TreeProcesses processes(3, treeZeroWaitsForCores(2));
-  TreeOrder order;
-  order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
-  order.takeIn = [&lentToTreeZero](const TreeOrder::Result& r) {
-    if (r.at(1) == 0) lentToTreeZero = r.at(2);
-    return r.at(0) == 1;
-  };
-  const auto guard = std::chrono::steady_clock::now() + 60s;
-  order.stop = [guard] { return std::chrono::steady_clock::now() > guard; };
-  const TreesTaken taken = takeTreesInOrder(processes, order);
-  EXPECT_EQ(taken.started, 3u);
-  EXPECT_EQ(taken.takenIn, 2u);
-  EXPECT_EQ(lentToTreeZero, 2);
+  const Taken taken = takeIn(processes);
+  EXPECT_EQ(taken.counts.started, 3u);
+  ASSERT_EQ(taken.order, (std::vector<int>{0, 1}));
+  EXPECT_EQ(taken.results[0].at(2), 2);  // two cores lent to tree 0
   EXPECT_TRUE(processes.idle());
 }
 
