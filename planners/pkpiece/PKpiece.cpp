@@ -777,7 +777,7 @@ std::optional<PKpiece::VerifiedPlan> PKpiece::verifyPlan(Motion* end) {
     // runs, whatever they find, give its estimated success without that bias.
     end->successEstimate = result.rate();  // until they do
     // A tree's process has one core; the planner's has them all once the tree is taken in.
-    if (measureInPlanner_)
+    if (inTreeProcess())
       return VerifiedPlan{end, result.runs, result.successes, verifier_.streams()};
     const VerificationResult fresh = measureEstimate(end);
     return VerifiedPlan{end, result.runs + fresh.runs, result.successes + fresh.successes,

@@ -84,7 +84,6 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   // This process is a copy of the planner as the search began (with the trees settled since):
   // it counts only its own tree's work.
   reseedForTree(tree);
-  measureInPlanner_ = true;
   lentCores_ = &lent;
   verifier_.beforeEachBatch([this] { useLentCores(); });
   // The paths adopted from the trees taken in before this one: how many depends on --threads,

@@ -260,6 +260,9 @@ class PKpiece : public ompl::base::Planner,
   /// In a tree's process: spreads the particles and verifications over the cores the search
   /// has lent it since the last call (the same results on any number).
   void useLentCores();
+  /// Whether this is a tree's process: a verified plan's estimate is then left to the
+  /// planner's process (measureInPlanner).
+  bool inTreeProcess() const { return lentCores_ != nullptr; }
   /// Takes a tree's packed result into this planner; how the tree ended.
   TreeEnd settleTree(const std::vector<unsigned char>& result);
   /// The estimate of the plan a tree's process verified, measured here on every core, with
@@ -314,9 +317,7 @@ class PKpiece : public ompl::base::Planner,
   std::uint64_t restarts_ = 0;      ///< times the tree started afresh
   bool motionBudgetSpent_ = false;  ///< the last solve() ended at maxMotions
   unsigned treeProcesses_ = 1;      ///< trees grown at once (parallel_trees)
-  /// In a tree's process: a verified plan's estimate is left to the planner's process.
-  bool measureInPlanner_ = false;
-  /// In a tree's process: where the cores the search lends it arrive.
+  /// In a tree's process (only there): where the cores the search lends it arrive.
   TreeProcesses::LentCores* lentCores_ = nullptr;
   std::uint64_t coresLent_ = 0;       ///< cores lent to trees that held up the search's end
   std::uint64_t treeSeedBase_ = 0;    ///< tree k's streams derive from this and k (parallel_trees)
