@@ -66,13 +66,40 @@ void printMarkdownTable(const std::vector<core::ParameterSpec>& specs) {
   }
 }
 
+bool sameParameters(const std::vector<core::ParameterSpec>& a,
+                    const std::vector<core::ParameterSpec>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (a[i].name != b[i].name || a[i].type != b[i].type ||
+        a[i].formatValue(a[i].defaultValue) != b[i].formatValue(b[i].defaultValue) ||
+        a[i].description != b[i].description)
+      return false;
+  return !a.empty();
+}
+
+/// The planner listed after `entry` whose parameters are the same as its own (goal-steering
+/// takes p-KPIECE's), listed in full there: the last of such a group has the table.
+const planners::PlannerRegistry::Entry* listedLaterWithSameParameters(
+    const planners::PlannerRegistry::Entry& entry) {
+  const planners::PlannerRegistry::Entry* last = nullptr;
+  bool after = false;
+  for (const auto* other : planners::plannerRegistry().entries()) {
+    if (after && sameParameters(entry.parameters, other->parameters)) last = other;
+    after = after || other == &entry;
+  }
+  return last;
+}
+
 /// The same as the text listing, as markdown: docs/planners.md holds it (scripts/planner-docs.py).
 void printMarkdown() {
   fmt::print("### Every planner\n\n");
   printMarkdownTable(planners::commonParameters());
   for (const auto* entry : planners::plannerRegistry().entries()) {
     fmt::print("\n### {}\n\n{}\n\n", entry->name, cell(entry->summary));
-    printMarkdownTable(entry->parameters);
+    if (const auto* same = listedLaterWithSameParameters(*entry))
+      fmt::print("The parameters of {} (below).\n", same->name);
+    else
+      printMarkdownTable(entry->parameters);
   }
 }
 
@@ -96,7 +123,10 @@ void addPlannersCommand(CLI::App& app, int& exitCode) {
       fmt::print("\n{}: {}\n", entry->name, entry->summary);
       const std::filesystem::path plugin = planners::pluginOfPlanner(entry->name);
       if (!plugin.empty()) fmt::print("    from plugin {}\n", plugin.string());
-      printParameters(entry->parameters);
+      if (const auto* same = listedLaterWithSameParameters(*entry))
+        fmt::print("    the parameters of {} (below)\n", same->name);
+      else
+        printParameters(entry->parameters);
     }
     exitCode = kExitSolved;
   });

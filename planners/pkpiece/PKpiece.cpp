@@ -70,13 +70,8 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()),
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
-      steering_(context, evaluator_, settings.clearingPush,
-                PushSettings{settings.pushPitch, settings.clearBehind, settings.corridorPitch,
-                             settings.pushBelowCentre, settings.pushSpeed, settings.crowdedPitch,
-                             settings.crowdedSlide},
-                settings.kinematicSteering,
-                ApproachSettings{settings.finalApproach, settings.approachPitch,
-                                 settings.approachSpeed, settings.goalShift, settings.moveSpeed}),
+      steering_(context, evaluator_, settings.clearingPush, pushSettingsOf(settings),
+                settings.kinematicSteering, approachSettingsOf(settings)),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL),

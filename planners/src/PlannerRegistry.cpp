@@ -6,6 +6,7 @@
 #define KAUTHAM_BUILTIN_PLANNERS(PLANNERS)                                            \
   PLANNERS(registerOmplControlPlanners)   /* KPIECE, RRT, SST, EST, PDST, o-KPIECE */ \
   PLANNERS(registerPKpiece)               /* p-KPIECE */                              \
+  PLANNERS(registerGoalSteering)          /* goal-steering (p-KPIECE's, no search) */ \
   PLANNERS(registerOmplGeometricPlanners) /* RRTConnect, PRM, RRTstar, ... */         \
   PLANNERS(registerTaskPlanners)          /* TMP, TMP-U */
 

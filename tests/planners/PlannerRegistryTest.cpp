@@ -26,7 +26,7 @@ TEST(PlannerRegistryTest, OffersTheBuiltInPlanners) {
   EXPECT_EQ(names, (std::vector<std::string>{"BITstar", "EST", "EST-geometric", "KPIECE",
                                              "KPIECE-geometric", "LazyRRT", "PDST", "PRM", "RRT",
                                              "RRT-geometric", "RRTConnect", "RRTstar", "SST", "TMP",
-                                             "TMP-U", "o-KPIECE", "p-KPIECE"}));
+                                             "TMP-U", "goal-steering", "o-KPIECE", "p-KPIECE"}));
 }
 
 TEST(PlannerRegistryTest, EveryPlannersSpecsAreWellFormed) {

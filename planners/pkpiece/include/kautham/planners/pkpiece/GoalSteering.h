@@ -8,6 +8,7 @@
 #include "kautham/planners/pkpiece/GoalEnd.h"
 #include "kautham/planners/pkpiece/JointSpaceSteering.h"
 #include "kautham/planners/pkpiece/MotionEvaluator.h"
+#include "kautham/planners/pkpiece/PKpieceSettings.h"
 
 namespace kautham::planners {
 
@@ -24,6 +25,16 @@ struct ApproachSettings {
   /// m/s the link goes on its other moves: to and up from a push, and to the line-up point.
   double moveSpeed = 0.3;
 };
+
+/// The clearing push as p-KPIECE's parameters set it.
+inline PushSettings pushSettingsOf(const PKpieceSettings& s) {
+  return {s.pushPitch, s.clearBehind,  s.corridorPitch, s.pushBelowCentre,
+          s.pushSpeed, s.crowdedPitch, s.crowdedSlide};
+}
+/// The approach as p-KPIECE's parameters set it.
+inline ApproachSettings approachSettingsOf(const PKpieceSettings& s) {
+  return {s.finalApproach, s.approachPitch, s.approachSpeed, s.goalShift, s.moveSpeed};
+}
 
 /// A control that drives the goal link to the goal region's centre, for p-KPIECE's
 /// goal-biased expansions (not in the paper: uniform random joint velocities enter a 3 cm

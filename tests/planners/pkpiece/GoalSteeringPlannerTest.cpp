@@ -1,0 +1,74 @@
+// The goal-steering planner: p-KPIECE's goal steering followed from the start without a search,
+// on the real dense scenes, in the real physics.
+
+#include <gtest/gtest.h>
+#include <ompl/util/Console.h>
+
+#include "TestPaths.h"
+#include "kautham/core/ProblemLoader.h"
+#include "kautham/planners/Solve.h"
+
+namespace kautham::planners {
+namespace {
+
+const bool quietOmpl = [] {
+  ompl::msg::setLogLevel(ompl::msg::LOG_WARN);
+  return true;
+}();
+
+struct Followed {
+  PlanOutcome outcome;
+  physics::ReplayResult replay;
+  double goalTolerance = 0.0;
+};
+
+/// `kautham plan FILE --planner goal-steering [--set ...]`: the file's p-KPIECE parameters
+/// carry over to it.
+Followed follow(const std::string& file, const std::vector<ParameterOverride>& sets = {}) {
+  const core::Problem problem = core::loadProblem(test::repoFile(file));
+  const PlanRequest request = makeRequest(problem, "goal-steering", sets, seedRandomness(1));
+  physics::PlanningContext context(problem, 0, request.propagation());
+  Followed run;
+  run.outcome = solve(context, request);
+  run.replay = physics::replay(context, run.outcome.controls);
+  run.goalTolerance = context.goal().spec().tolerance;
+  return run;
+}
+
+std::string property(const PlanOutcome& outcome, const std::string& name) {
+  for (const auto& [key, value] : outcome.statistics.plannerProperties)
+    if (key == name) return value;
+  return "(none)";
+}
+
+TEST(GoalSteeringPlannerTest, FollowsTheSteeringThroughKukaClutter30sPushesToTheGoal) {
+  // kuka_clutter_30's steering clears the corridor and the free space push by push and ends
+  // within the file's goal margin (half the 2 cm tolerance), every motion valid.
+  const Followed run = follow("problems/kuka_clutter_30.xml");
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal);
+  EXPECT_EQ(run.replay.firstViolation, physics::Violation::None);
+  EXPECT_LE(run.replay.finalGoalDistance, 0.5 * run.goalTolerance + 1e-9);
+  EXPECT_GT(run.outcome.controls.size(), 10u);  // pushes, not a straight reach
+  EXPECT_TRUE(run.outcome.candidateFailures.empty());
+  EXPECT_EQ(property(run.outcome, "stalled"), "0");
+}
+
+TEST(GoalSteeringPlannerTest, StopsAtTheFirstRuleBrokenAndSaysWhichObjectBrokeIt) {
+  // kuka_clutter_40 with the corridor cleared 10 cm behind the goal point: can8 is pushed first,
+  // from its +x side, where lowering the gripper tips can33 (docs/benchmarks.md, session 59).
+  const Followed run = follow("problems/kuka_clutter_40.xml", {{"clear_behind", "0.1"}});
+  EXPECT_FALSE(run.outcome.solved);
+  EXPECT_TRUE(run.outcome.approximate);
+  ASSERT_EQ(run.outcome.candidateFailures.size(), 1u);
+  EXPECT_EQ(run.outcome.candidateFailures[0].reason,
+            physics::toString(physics::Violation::ObjectTilted));
+  EXPECT_EQ(run.outcome.candidateFailures[0].object, "can33");
+  EXPECT_EQ(run.outcome.candidateFailures[0].count, 1u);
+  // The plan is the part that stayed valid.
+  EXPECT_EQ(run.replay.firstViolation, physics::Violation::None);
+  EXPECT_FALSE(run.replay.reachedGoal);
+}
+
+}  // namespace
+}  // namespace kautham::planners
