@@ -49,7 +49,7 @@ class GoalSteeringPlanner : public ompl::base::Planner, public FailureReporter {
       : Planner(context.spaceInformation(), "goal-steering"),
         context_(context),
         settings_(settings),
-        evaluator_(context, settings.displacement),
+        evaluator_(context, settings.displacement),  // only particles judge the displacement
         steering_(context, evaluator_, settings.clearingPush, pushSettingsOf(settings),
                   settings.kinematicSteering, approachSettingsOf(settings)) {
     specs_.approximateSolutions = true;
@@ -188,10 +188,7 @@ void registerGoalSteering(PlannerRegistry& registry) {
       "parameters, of which the steering's count)",
       PKpieceSettings::parameters(),
       [](const PKpieceSettings& settings, physics::PlanningContext& context) {
-        PKpieceSettings resolved = settings;
-        if (resolved.displacement <= 0.0)
-          resolved.displacement = context.problem().interaction.maxDisplacement;
-        return ompl::base::PlannerPtr(std::make_shared<GoalSteeringPlanner>(context, resolved));
+        return ompl::base::PlannerPtr(std::make_shared<GoalSteeringPlanner>(context, settings));
       }));
 }
 
