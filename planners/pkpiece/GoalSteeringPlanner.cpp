@@ -4,8 +4,7 @@
 // 59 followed it by hand to find which push tipped which can (docs/planners.md, "The goal
 // steering alone").
 
-#include <cstdint>
-#include <limits>
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
