@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include <Eigen/Geometry>
@@ -52,7 +53,8 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
       behind_(settings.behind),
       belowCentre_(settings.belowCentre),
       slide_(settings.crowdedSlide),
-      end_(end) {
+      end_(end),
+      angleSpread_(settings.angleSpread) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
@@ -130,7 +132,11 @@ const ClearingPush::Posture& ClearingPush::choosePosture(const double* state, st
   if (crowded_.pitch <= own.pitch) return own;
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
-  if (onLine(link, aimAt(centre, own)) || onLine(link, aimAt(centre, crowded_))) {
+  const Eigen::Vector3d fromPlus = pushDirection(1.0, blocker);
+  const Eigen::Vector3d fromMinus = pushDirection(-1.0, blocker);
+  if (onLine(link, aimAt(centre, own), fromPlus) || onLine(link, aimAt(centre, own), fromMinus) ||
+      onLine(link, aimAt(centre, crowded_), fromPlus) ||
+      onLine(link, aimAt(centre, crowded_), fromMinus)) {
     // A push under way keeps the posture the gripper is nearest: the pitch it has now.
     return nearer(pitchNow(state), own, crowded_);
   }
@@ -141,8 +147,8 @@ const ClearingPush::Posture& ClearingPush::choosePosture(const double* state, st
 
 double ClearingPush::widerRoom(const double* state, const Eigen::Vector3d& centre,
                                std::size_t blocker, const Posture& posture) const {
-  return std::max(room(state, standOff(centre, posture, 1.0), blocker, posture.reach),
-                  room(state, standOff(centre, posture, -1.0), blocker, posture.reach));
+  return std::max(room(state, standOff(centre, posture, 1.0, blocker), blocker, posture.reach),
+                  room(state, standOff(centre, posture, -1.0, blocker), blocker, posture.reach));
 }
 
 double pitchBelowLevel(const Eigen::Matrix3d& turn) {
@@ -158,9 +164,28 @@ const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a
   return std::abs(pitch - b.pitch) < std::abs(pitch - a.pitch) ? b : a;
 }
 
-bool ClearingPush::onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const {
+double ClearingPush::pushAngle(std::size_t blocker) const {
+  if (tree_ == 0 || angleSpread_ <= 0.0) return 0.0;
+  // A hash of the tree and the object (splitmix64's finaliser): the same object is pushed at the
+  // same angle all through a tree, whatever state the push is steered from.
+  std::uint64_t h = tree_ * 0x9E3779B97F4A7C15ULL ^ (blocker + 1) * 0xBF58476D1CE4E5B9ULL;
+  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
+  h ^= h >> 31;
+  const double unit = static_cast<double>(h >> 11) * 0x1.0p-53;  // in [0, 1)
+  return angleSpread_ * (2.0 * unit - 1.0);
+}
+
+Eigen::Vector3d ClearingPush::pushDirection(double side, std::size_t blocker) const {
+  // Across the approach, turned towards the target (+) or away from it by the push's angle.
+  const double angle = pushAngle(blocker);
+  return -side * std::cos(angle) * across_ - std::sin(angle) * back_;
+}
+
+bool ClearingPush::onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim,
+                          const Eigen::Vector3d& direction) const {
   const Eigen::Vector3d fromAim = link - aim;
-  return (fromAim - fromAim.dot(across_) * across_).norm() <= kOnLine;
+  return (fromAim - fromAim.dot(direction) * direction).norm() <= kOnLine;
 }
 
 Eigen::Vector3d ClearingPush::aimAt(const Eigen::Vector3d& centre, const Posture& posture) const {
@@ -173,8 +198,8 @@ Eigen::Vector3d ClearingPush::aimAt(const Eigen::Vector3d& centre, const Posture
 }
 
 Eigen::Vector3d ClearingPush::standOff(const Eigen::Vector3d& centre, const Posture& posture,
-                                       double side) const {
-  return aimAt(centre, posture) + side * (halfWidth_ + kStandOff) * across_;
+                                       double side, std::size_t blocker) const {
+  return aimAt(centre, posture) - (halfWidth_ + kStandOff) * pushDirection(side, blocker);
 }
 
 ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t blocker, double later,
@@ -183,12 +208,12 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const Posture& posture = choosePosture(state, blocker, own);
   const Eigen::Vector3d centre = physics::WorldLayout::position(state, blocker);
   const Eigen::Vector3d object = aimAt(centre, posture);
-  const Eigen::Vector3d plus = standOff(centre, posture, 1.0);
-  const Eigen::Vector3d minus = standOff(centre, posture, -1.0);
+  const Eigen::Vector3d plus = standOff(centre, posture, 1.0, blocker);
+  const Eigen::Vector3d minus = standOff(centre, posture, -1.0, blocker);
   // Push away from the side with more room: the stand-off lies on the other side.
   const bool fromPlus =
       room(state, plus, blocker, posture.reach) >= room(state, minus, blocker, posture.reach);
-  const Eigen::Vector3d direction = fromPlus ? Eigen::Vector3d(-across_) : across_;
+  const Eigen::Vector3d direction = pushDirection(fromPlus ? 1.0 : -1.0, blocker);
   const Eigen::Vector3d start = fromPlus ? plus : minus;
   const Eigen::Vector3d end = object + kPushThrough * direction;
   const double endToGoal = later + (goal.position() - end).norm();
@@ -196,7 +221,7 @@ ClearingPush::Step ClearingPush::pushStep(const double* state, std::size_t block
   const Eigen::Vector3d link = context_.layout().goalLinkPosition(state);
   const double along = (link - object).dot(direction);
   const double pushLength = (end - start).norm();
-  if (along <= 0.0 && onLine(link, object))
+  if (along <= 0.0 && onLine(link, object, direction))
     return Step{end, posture.orientation, (end - link).norm() + endToGoal, true};
   // Low behind the stand-off (within slide_): slide in at the push's speed, the objects in the
   // way slide. Judged on the whole slide_, not on the landing: the landing moves as the slide

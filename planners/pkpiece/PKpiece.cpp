@@ -971,6 +971,11 @@ void PKpiece::tallyBrokenRule(const NominalRun& run, bool steered) {
 
 void PKpiece::startAfresh() {
   ++restarts_;
+  startTree(restarts_);
+}
+
+void PKpiece::startTree(std::size_t tree) {
+  steering_.setTree(tree);
   grid_.clear();
   cells_.clear();
   treeBestRank_ = std::numeric_limits<double>::infinity();

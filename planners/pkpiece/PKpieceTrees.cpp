@@ -94,7 +94,7 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   closest_ = nullptr;
   resetCounters();
   const physics::PropagationCounters before = context_.propagator().counters();
-  startAfresh();
+  startTree(tree);
   restarts_ = 0;  // the search counts the trees it takes in
   // The caller's condition may report progress or count its checks: that is the search's own
   // process's business. A tree stops at the time limit (and at the condition when there is none).

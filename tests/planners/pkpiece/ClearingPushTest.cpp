@@ -577,5 +577,69 @@ TEST(GoalSteeringTest, TheMovesBetweenPushesGoAtTheMoveSpeed) {
   EXPECT_LT(fast.fastest, 0.5 * 1.25);
 }
 
+/// Where the goal steering alone gets on kuka_clutter_25 for p-KPIECE's tree `tree`, with the
+/// KUKA files' push and approach (docs/scenes.md) and pushes turned by up to `spread` (rad).
+struct TreeSteering {
+  bool reachedGoal = false;
+  physics::Violation broke = physics::Violation::None;
+  std::vector<double> firstControl;
+  std::vector<double> end;
+};
+
+TreeSteering followTreeOnClutter25(std::uint64_t tree, double spread) {
+  const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_25.xml"));
+  physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
+  PushSettings push{kPitch, 0.2, 1.2, 0.015, 0.2};
+  push.crowdedSlide = 0.1;
+  push.angleSpread = spread;
+  const ApproachSettings approach{0.05, 0.2, 0.0, 0.0075, 0.5};
+  MotionEvaluator evaluator(context, 0.0);
+  GoalSteering steering(context, evaluator, true, push, true, approach);
+  steering.setTree(tree);
+  TreeSteering result;
+  std::vector<double> state = context.startState();
+  for (int motion = 0; motion < 60; ++motion) {
+    const std::optional<NominalMotion> steered = steering.towardsGoal(state.data());
+    if (!steered) break;
+    if (result.firstControl.empty()) result.firstControl = steered->control;
+    const NominalRun run =
+        evaluator.runNominal(state.data(), steered->control.data(), steered->steps);
+    state = run.end;
+    if (run.reachedGoal) {
+      result.reachedGoal = true;
+      break;
+    }
+    if (run.stoppedBy != physics::Violation::None) {
+      result.broke = run.stoppedBy;
+      break;
+    }
+  }
+  result.end = state;
+  return result;
+}
+
+TEST(GoalSteeringTest, EachTreeAfterTheFirstPushesAtAnglesOfItsOwn) {
+  // On kuka_clutter_25 the first tree's steering pushes straight across and tips can21
+  // (docs/benchmarks.md, session 59). With push_angle_spread every later tree pushes each object
+  // at an angle of its own: the same for the tree every time, other pushes for other trees, and
+  // some of them reach the goal with every motion valid.
+  const TreeSteering first = followTreeOnClutter25(0, 0.4);
+  EXPECT_FALSE(first.reachedGoal);
+  EXPECT_EQ(first.broke, physics::Violation::ObjectTilted);
+  // Without a spread a later tree steers as the first.
+  EXPECT_EQ(followTreeOnClutter25(3, 0.0).firstControl, first.firstControl);
+  int reached = 0;
+  int differ = 0;
+  for (std::uint64_t tree = 1; tree <= 6; ++tree) {
+    const TreeSteering later = followTreeOnClutter25(tree, 0.4);
+    differ += later.firstControl != first.firstControl;
+    reached += later.reachedGoal && later.broke == physics::Violation::None;
+  }
+  EXPECT_GE(differ, 4);
+  EXPECT_GE(reached, 1);
+  const TreeSteering again = followTreeOnClutter25(2, 0.4);
+  EXPECT_EQ(again.end, followTreeOnClutter25(2, 0.4).end);
+}
+
 }  // namespace
 }  // namespace kautham::planners

@@ -46,6 +46,9 @@ struct PushSettings {
   /// stand-off at the push's height; a gripper already low within this behind a stand-off
   /// slides in too. 0: lowered onto the stand-off.
   double crowdedSlide = 0.0;
+  /// rad a tree after the first may turn each push away from straight across the approach, at an
+  /// angle drawn for the tree and the object (towards the target or away from it); 0: across.
+  double angleSpread = 0.0;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -105,6 +108,9 @@ class ClearingPush {
   /// The movable object in the corridor behind the goal point that is pushed first (the one
   /// furthest back), if any.
   std::optional<std::size_t> corridorBlocker(const double* state) const;
+  /// Which of p-KPIECE's trees the pushes are for: with an angle spread, each tree after the
+  /// first (0) pushes each object at an angle of its own (PushSettings::angleSpread).
+  void setTree(std::uint64_t tree) { tree_ = tree; }
 
  private:
   /// How the gripper is held during a push: pitched down by `pitch`, turned as `orientation`,
@@ -126,9 +132,15 @@ class ClearingPush {
   /// Where the goal link meets the object centred at `centre`: its fingers' middle below the
   /// centre, not below the workspace's floor.
   Eigen::Vector3d aimAt(const Eigen::Vector3d& centre, const Posture& posture) const;
-  /// The stand-off beside the object on the `side` (+1 or -1) across the approach.
-  Eigen::Vector3d standOff(const Eigen::Vector3d& centre, const Posture& posture,
-                           double side) const;
+  /// The stand-off beside the object on the `side` (+1 or -1) across the approach (turned by
+  /// the push's angle).
+  Eigen::Vector3d standOff(const Eigen::Vector3d& centre, const Posture& posture, double side,
+                           std::size_t blocker) const;
+  /// The angle (rad) this tree pushes `blocker` at, away from straight across the approach.
+  double pushAngle(std::size_t blocker) const;
+  /// Which way a push of `blocker` from the `side` (+1 or -1) stand-off goes: across the
+  /// approach, turned by pushAngle().
+  Eigen::Vector3d pushDirection(double side, std::size_t blocker) const;
   /// The more room of the two stand-offs beside the object held as `posture` (room()).
   double widerRoom(const double* state, const Eigen::Vector3d& centre, std::size_t blocker,
                    const Posture& posture) const;
@@ -136,8 +148,9 @@ class ClearingPush {
   double pitchNow(const double* state) const;
   /// Of `a` and `b`, the posture whose pitch is nearer `pitch` (`a` if as near).
   static const Posture& nearer(double pitch, const Posture& a, const Posture& b);
-  /// Whether `link` is on the line of a push through `aim` (across the approach).
-  bool onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim) const;
+  /// Whether `link` is on the line of a push through `aim` going along `direction`.
+  bool onLine(const Eigen::Vector3d& link, const Eigen::Vector3d& aim,
+              const Eigen::Vector3d& direction) const;
   /// Where the gripper is lowered to slide into the stand-off `start`: the nearest point from it
   /// back (along back_, up to slide_) where the gripper has room over its whole width (`start`
   /// itself if it has), or the roomiest.
@@ -175,6 +188,8 @@ class ClearingPush {
   double belowCentre_ = 0.0;
   double slide_ = 0.0;  ///< PushSettings::crowdedSlide
   const GoalEnd* end_ = nullptr;
+  double angleSpread_ = 0.0;  ///< PushSettings::angleSpread
+  std::uint64_t tree_ = 0;    ///< setTree()
 };
 
 }  // namespace kautham::planners

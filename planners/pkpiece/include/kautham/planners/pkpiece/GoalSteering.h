@@ -29,7 +29,7 @@ struct ApproachSettings {
 /// The clearing push as p-KPIECE's parameters set it.
 inline PushSettings pushSettingsOf(const PKpieceSettings& s) {
   return {s.pushPitch, s.clearBehind,  s.corridorPitch, s.pushBelowCentre,
-          s.pushSpeed, s.crowdedPitch, s.crowdedSlide};
+          s.pushSpeed, s.crowdedPitch, s.crowdedSlide,  s.pushAngleSpread};
 }
 /// The approach as p-KPIECE's parameters set it.
 inline ApproachSettings approachSettingsOf(const PKpieceSettings& s) {
@@ -87,6 +87,8 @@ class GoalSteering {
   /// since construction or resetCount().
   std::uint64_t jacobianAims() const { return jacobianAims_; }
   void resetCount() { jacobianAims_ = 0; }
+  /// Which of p-KPIECE's trees it steers for (ClearingPush::setTree).
+  void setTree(std::uint64_t tree) { clearing_.setTree(tree); }
   /// Adds aims made elsewhere (a tree grown in a process of its own).
   void addJacobianAims(std::uint64_t aims) { jacobianAims_ += aims; }
 

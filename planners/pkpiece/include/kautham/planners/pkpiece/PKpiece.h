@@ -236,6 +236,9 @@ class PKpiece : public ompl::base::Planner,
   /// Forgets the tree for the search (its cells, the motions near the goal) and plants a new
   /// root; the old motions stay, so the nearest of all can still be an approximate solution.
   void startAfresh();
+  /// startAfresh() for the tree numbered `tree` (0 the first), whose pushes the goal steering
+  /// may turn by an angle of the tree's own (push_angle_spread).
+  void startTree(std::size_t tree);
   void resetCounters();
 
   /// How a tree's growth ended: with a verified plan, given up (stalled, full, or its plan

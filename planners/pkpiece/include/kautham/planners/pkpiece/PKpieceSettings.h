@@ -92,6 +92,10 @@ struct PKpieceSettings {
   /// How far back along the approach (m) the gripper may be lowered behind a stand-off without
   /// room for it, to slide into it low (PushSettings::crowdedSlide; 0: lowered onto it).
   double crowdedSlide;
+  /// How far (rad) each tree after the first may turn a push away from straight across the
+  /// approach, at an angle drawn for the tree and the object (PushSettings::angleSpread; 0:
+  /// every push across).
+  double pushAngleSpread;
   /// How far from the goal point a plan may aim to end (m) where an object reaches into the
   /// free space there but not at the nearer end (0: the goal point only).
   double goalShift;
@@ -348,6 +352,14 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                              "with room (else the roomiest), and slide it in low: the objects in "
                              "the way slide aside instead of tipping under fingers lowered onto "
                              "them (0: lowered onto the stand-off)"))
+          .add(&S::pushAngleSpread,
+               Parameter::real("push_angle_spread")
+                   .byDefault(0.0)
+                   .range(0.0, 1.2)
+                   .describe("each tree after the first pushes each object at an angle of its "
+                             "own, drawn up to this far (rad) from straight across the approach, "
+                             "towards the target or away from it: another tree tries other "
+                             "pushes (0: every push straight across)"))
           .add(&S::goalShift,
                Parameter::real("goal_shift")
                    .byDefault(0.0)
