@@ -17,14 +17,15 @@ double standardNormal(std::mt19937_64& rng) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);
 }
 
-namespace {
-
-std::uint64_t splitMix64(std::uint64_t x) {
-  x += 0x9E3779B97F4A7C15ULL;
+std::uint64_t mix64(std::uint64_t x) {
   x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ULL;
   x = (x ^ (x >> 27)) * 0x94D049BB133111EBULL;
   return x ^ (x >> 31);
 }
+
+namespace {
+
+std::uint64_t splitMix64(std::uint64_t x) { return mix64(x + 0x9E3779B97F4A7C15ULL); }
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "kautham/core/ApproachCorridor.h"
+#include "kautham/core/Random.h"
 #include "kautham/core/SegmentDistance.h"
 
 namespace kautham::planners {
@@ -166,12 +167,10 @@ const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a
 
 double ClearingPush::pushAngle(std::size_t blocker) const {
   if (tree_ == 0 || angleSpread_ <= 0.0) return 0.0;
-  // A hash of the tree and the object (splitmix64's finaliser): the same object is pushed at the
-  // same angle all through a tree, whatever state the push is steered from.
-  std::uint64_t h = tree_ * 0x9E3779B97F4A7C15ULL ^ (blocker + 1) * 0xBF58476D1CE4E5B9ULL;
-  h = (h ^ (h >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  h = (h ^ (h >> 27)) * 0x94D049BB133111EBULL;
-  h ^= h >> 31;
+  // A hash of the tree and the object: the same object is pushed at the same angle all through a
+  // tree, whatever state the push is steered from.
+  const std::uint64_t h =
+      core::mix64(tree_ * 0x9E3779B97F4A7C15ULL ^ (blocker + 1) * 0xBF58476D1CE4E5B9ULL);
   const double unit = static_cast<double>(h >> 11) * 0x1.0p-53;  // in [0, 1)
   return angleSpread_ * (2.0 * unit - 1.0);
 }

@@ -23,4 +23,8 @@ double standardNormal(std::mt19937_64& rng);
 /// run's numbers depend on S and i only, not on the order the runs are made in.
 std::uint64_t runSeed(std::uint64_t seed, std::uint64_t index);
 
+/// SplitMix64's finaliser: 64 well-mixed bits from `x`, for a value drawn from a key (a hash)
+/// rather than from a stream.
+std::uint64_t mix64(std::uint64_t x);
+
 }  // namespace kautham::core
