@@ -55,7 +55,8 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
       belowCentre_(settings.belowCentre),
       slide_(settings.crowdedSlide),
       end_(end),
-      angleSpread_(settings.angleSpread) {
+      angleSpread_(settings.angleSpread),
+      angleAfter_(std::max<std::uint64_t>(settings.angleAfter, 1)) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
@@ -166,7 +167,7 @@ const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a
 }
 
 double ClearingPush::pushAngle(std::size_t blocker) const {
-  if (tree_ == 0 || angleSpread_ <= 0.0) return 0.0;
+  if (tree_ < angleAfter_ || angleSpread_ <= 0.0) return 0.0;
   // A hash of the tree and the object: the same object is pushed at the same angle all through a
   // tree, whatever state the push is steered from.
   const std::uint64_t h =

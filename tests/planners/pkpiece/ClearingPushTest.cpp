@@ -586,12 +586,13 @@ struct TreeSteering {
   std::vector<double> end;
 };
 
-TreeSteering followTreeOnClutter25(std::uint64_t tree, double spread) {
+TreeSteering followTreeOnClutter25(std::uint64_t tree, double spread, std::uint64_t after = 1) {
   const core::Problem problem = core::loadProblem(test::repoFile("problems/kuka_clutter_25.xml"));
   physics::PlanningContext context(problem, 0, physics::PropagationSettings{});
   PushSettings push{kPitch, 0.2, 1.2, 0.015, 0.2};
   push.crowdedSlide = 0.1;
   push.angleSpread = spread;
+  push.angleAfter = after;
   const ApproachSettings approach{0.05, 0.2, 0.0, 0.0075, 0.5};
   MotionEvaluator evaluator(context, 0.0);
   GoalSteering steering(context, evaluator, true, push, true, approach);
@@ -639,6 +640,23 @@ TEST(GoalSteeringTest, EachTreeAfterTheFirstPushesAtAnglesOfItsOwn) {
   EXPECT_GE(reached, 1);
   const TreeSteering again = followTreeOnClutter25(2, 0.4);
   EXPECT_EQ(again.end, followTreeOnClutter25(2, 0.4).end);
+}
+
+TEST(GoalSteeringTest, TreesBeforePushAngleAfterPushStraightAndTheRestAsBefore) {
+  // push_angle_after holds the spread back for the first trees: a tree numbered below it steers
+  // as the first tree does (and tips can21 on kuka_clutter_25), one from it on at the angles it
+  // has with every tree after the first turned.
+  const TreeSteering first = followTreeOnClutter25(0, 0.4);
+  std::uint64_t opens = 0;
+  for (std::uint64_t tree = 1; tree <= 6 && opens == 0; ++tree)
+    if (followTreeOnClutter25(tree, 0.4).reachedGoal) opens = tree;
+  ASSERT_GT(opens, 0u);
+  const TreeSteering held = followTreeOnClutter25(opens, 0.4, opens + 1);
+  EXPECT_FALSE(held.reachedGoal);
+  EXPECT_EQ(held.end, first.end);
+  const TreeSteering turned = followTreeOnClutter25(opens, 0.4, opens);
+  EXPECT_TRUE(turned.reachedGoal);
+  EXPECT_EQ(turned.end, followTreeOnClutter25(opens, 0.4).end);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -49,6 +50,9 @@ struct PushSettings {
   /// rad a tree after the first may turn each push away from straight across the approach, at an
   /// angle drawn for the tree and the object (towards the target or away from it); 0: across.
   double angleSpread = 0.0;
+  /// With an angle spread, the first tree whose pushes turn: the trees numbered below it push
+  /// straight across, as the first does.
+  std::uint64_t angleAfter = 1;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -108,8 +112,9 @@ class ClearingPush {
   /// The movable object in the corridor behind the goal point that is pushed first (the one
   /// furthest back), if any.
   std::optional<std::size_t> corridorBlocker(const double* state) const;
-  /// Which of p-KPIECE's trees the pushes are for: with an angle spread, each tree after the
-  /// first (0) pushes each object at an angle of its own (PushSettings::angleSpread).
+  /// Which of p-KPIECE's trees the pushes are for: with an angle spread, each tree from
+  /// PushSettings::angleAfter on pushes each object at an angle of its own
+  /// (PushSettings::angleSpread).
   void setTree(std::uint64_t tree) { tree_ = tree; }
 
  private:
@@ -188,8 +193,9 @@ class ClearingPush {
   double belowCentre_ = 0.0;
   double slide_ = 0.0;  ///< PushSettings::crowdedSlide
   const GoalEnd* end_ = nullptr;
-  double angleSpread_ = 0.0;  ///< PushSettings::angleSpread
-  std::uint64_t tree_ = 0;    ///< setTree()
+  double angleSpread_ = 0.0;      ///< PushSettings::angleSpread
+  std::uint64_t angleAfter_ = 1;  ///< PushSettings::angleAfter
+  std::uint64_t tree_ = 0;        ///< setTree()
 };
 
 }  // namespace kautham::planners

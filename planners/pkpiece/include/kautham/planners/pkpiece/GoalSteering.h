@@ -28,8 +28,8 @@ struct ApproachSettings {
 
 /// The clearing push as p-KPIECE's parameters set it.
 inline PushSettings pushSettingsOf(const PKpieceSettings& s) {
-  return {s.pushPitch, s.clearBehind,  s.corridorPitch, s.pushBelowCentre,
-          s.pushSpeed, s.crowdedPitch, s.crowdedSlide,  s.pushAngleSpread};
+  return {s.pushPitch,    s.clearBehind,  s.corridorPitch,   s.pushBelowCentre, s.pushSpeed,
+          s.crowdedPitch, s.crowdedSlide, s.pushAngleSpread, s.pushAngleAfter};
 }
 /// The approach as p-KPIECE's parameters set it.
 inline ApproachSettings approachSettingsOf(const PKpieceSettings& s) {

@@ -96,6 +96,9 @@ struct PKpieceSettings {
   /// approach, at an angle drawn for the tree and the object (PushSettings::angleSpread; 0:
   /// every push across).
   double pushAngleSpread;
+  /// With pushAngleSpread, the first tree whose pushes turn: the trees numbered below it push
+  /// straight across (PushSettings::angleAfter).
+  unsigned pushAngleAfter;
   /// How far from the goal point a plan may aim to end (m) where an object reaches into the
   /// free space there but not at the nearer end (0: the goal point only).
   double goalShift;
@@ -360,6 +363,13 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                              "own, drawn up to this far (rad) from straight across the approach, "
                              "towards the target or away from it: another tree tries other "
                              "pushes (0: every push straight across)"))
+          .add(&S::pushAngleAfter,
+               Parameter::integer("push_angle_after")
+                   .byDefault(1)
+                   .range(1, 100000)
+                   .describe("with push_angle_spread, the trees numbered from this one on push "
+                             "at angles of their own; the ones before push straight across, as "
+                             "the first does (1: every tree after the first)"))
           .add(&S::goalShift,
                Parameter::real("goal_shift")
                    .byDefault(0.0)
