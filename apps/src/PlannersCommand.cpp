@@ -66,28 +66,37 @@ void printMarkdownTable(const std::vector<core::ParameterSpec>& specs) {
   }
 }
 
-bool sameParameters(const std::vector<core::ParameterSpec>& a,
-                    const std::vector<core::ParameterSpec>& b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (a[i].name != b[i].name || a[i].type != b[i].type ||
-        a[i].formatValue(a[i].defaultValue) != b[i].formatValue(b[i].defaultValue) ||
-        a[i].description != b[i].description)
+/// Whether `all` begins with `inner`, spec for spec (goal-steering's parameters are
+/// p-KPIECE's and one of its own).
+bool beginsWith(const std::vector<core::ParameterSpec>& all,
+                const std::vector<core::ParameterSpec>& inner) {
+  if (inner.empty() || inner.size() > all.size()) return false;
+  for (std::size_t i = 0; i < inner.size(); ++i)
+    if (all[i].name != inner[i].name || all[i].type != inner[i].type ||
+        all[i].formatValue(all[i].defaultValue) != inner[i].formatValue(inner[i].defaultValue) ||
+        all[i].description != inner[i].description)
       return false;
-  return !a.empty();
+  return true;
 }
 
-/// The planner listed after `entry` whose parameters are the same as its own (goal-steering
-/// takes p-KPIECE's), listed in full there: the last of such a group has the table.
-const planners::PlannerRegistry::Entry* listedLaterWithSameParameters(
+/// The planner listed after `entry` whose parameters `entry`'s begin with, listed in full
+/// there: the last of such a group has the table.
+const planners::PlannerRegistry::Entry* listedLaterWithItsParameters(
     const planners::PlannerRegistry::Entry& entry) {
   const planners::PlannerRegistry::Entry* last = nullptr;
   bool after = false;
   for (const auto* other : planners::plannerRegistry().entries()) {
-    if (after && sameParameters(entry.parameters, other->parameters)) last = other;
+    if (after && beginsWith(entry.parameters, other->parameters)) last = other;
     after = after || other == &entry;
   }
   return last;
+}
+
+/// `entry`'s parameters after those it shares with `shared` (listedLaterWithItsParameters).
+std::vector<core::ParameterSpec> ownParameters(const planners::PlannerRegistry::Entry& entry,
+                                               const planners::PlannerRegistry::Entry& shared) {
+  return {entry.parameters.begin() + static_cast<std::ptrdiff_t>(shared.parameters.size()),
+          entry.parameters.end()};
 }
 
 /// The same as the text listing, as markdown: docs/planners.md holds it (scripts/planner-docs.py).
@@ -96,10 +105,14 @@ void printMarkdown() {
   printMarkdownTable(planners::commonParameters());
   for (const auto* entry : planners::plannerRegistry().entries()) {
     fmt::print("\n### {}\n\n{}\n\n", entry->name, cell(entry->summary));
-    if (const auto* same = listedLaterWithSameParameters(*entry))
-      fmt::print("The parameters of {} (below).\n", same->name);
-    else
+    const auto* shared = listedLaterWithItsParameters(*entry);
+    if (!shared) {
       printMarkdownTable(entry->parameters);
+      continue;
+    }
+    const std::vector<core::ParameterSpec> own = ownParameters(*entry, *shared);
+    fmt::print("The parameters of {} (below){}\n", shared->name, own.empty() ? "." : ", and:\n");
+    if (!own.empty()) printMarkdownTable(own);
   }
 }
 
@@ -123,10 +136,14 @@ void addPlannersCommand(CLI::App& app, int& exitCode) {
       fmt::print("\n{}: {}\n", entry->name, entry->summary);
       const std::filesystem::path plugin = planners::pluginOfPlanner(entry->name);
       if (!plugin.empty()) fmt::print("    from plugin {}\n", plugin.string());
-      if (const auto* same = listedLaterWithSameParameters(*entry))
-        fmt::print("    the parameters of {} (below)\n", same->name);
-      else
+      const auto* shared = listedLaterWithItsParameters(*entry);
+      if (!shared) {
         printParameters(entry->parameters);
+        continue;
+      }
+      const std::vector<core::ParameterSpec> own = ownParameters(*entry, *shared);
+      fmt::print("    the parameters of {} (below){}\n", shared->name, own.empty() ? "" : ", and");
+      printParameters(own);
     }
     exitCode = kExitSolved;
   });

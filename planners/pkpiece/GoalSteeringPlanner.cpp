@@ -35,6 +35,24 @@ constexpr unsigned kMostMotions = 300;
 constexpr unsigned kStallMotions = 20;
 constexpr double kNearer = 0.001;  // m
 
+/// p-KPIECE's parameters, and which of its trees to steer for.
+struct GoalSteeringSettings {
+  PKpieceSettings pkpiece;
+  /// With push_angle_spread, the tree whose pushes are followed (ClearingPush::setTree): the
+  /// steering of p-KPIECE's tree of that number, at the angles that tree pushes at.
+  unsigned tree;
+
+  static core::SettingsParameters<GoalSteeringSettings> parameters() {
+    return core::SettingsParameters<GoalSteeringSettings>()
+        .include(&GoalSteeringSettings::pkpiece, PKpieceSettings::parameters())
+        .add(&GoalSteeringSettings::tree,
+             core::Parameter::integer("tree").byDefault(0).range(0, 100000).describe(
+                 "follow the steering of p-KPIECE's tree of this number: with "
+                 "push_angle_spread, the trees from push_angle_after on push at "
+                 "angles of their own (0: the first tree's, straight across)"));
+  }
+};
+
 /// Follows the goal steering from the start: one motion after another, each run in the nominal
 /// physics as p-KPIECE runs its candidates, until one ends deep enough in the goal region
 /// (goal_margin), breaks a rule, the steering has no motion to give or stalls. The motions
@@ -44,16 +62,17 @@ class GoalSteeringPlanner : public ompl::base::Planner, public FailureReporter {
   enum class Stop { None, Goal, RuleBroken, NoMotion, Stalled };
 
  public:
-  GoalSteeringPlanner(physics::PlanningContext& context, const PKpieceSettings& settings)
+  GoalSteeringPlanner(physics::PlanningContext& context, const GoalSteeringSettings& chosen)
       : Planner(context.spaceInformation(), "goal-steering"),
         context_(context),
-        settings_(settings),
-        evaluator_(context, settings.displacement),  // only particles judge the displacement
-        steering_(context, evaluator_, settings.clearingPush, pushSettingsOf(settings),
-                  settings.kinematicSteering, approachSettingsOf(settings)) {
+        settings_(chosen.pkpiece),
+        evaluator_(context, settings_.displacement),  // only particles judge the displacement
+        steering_(context, evaluator_, settings_.clearingPush, pushSettingsOf(settings_),
+                  settings_.kinematicSteering, approachSettingsOf(settings_)) {
+    steering_.setTree(chosen.tree);
     specs_.approximateSolutions = true;
-    if (settings.tiltMargin < 1.0)
-      evaluator_.setNominalTiltLimit(settings.tiltMargin * context.problem().interaction.maxTilt);
+    if (settings_.tiltMargin < 1.0)
+      evaluator_.setNominalTiltLimit(settings_.tiltMargin * context.problem().interaction.maxTilt);
     addPlannerProgressProperty("motions INTEGER", [this] { return std::to_string(motions_); });
     // Why the following ended, unless at the goal or at a broken rule (the candidate failure):
     // the steering had no motion to give, or it stalled (or used up its motions).
@@ -180,13 +199,13 @@ class GoalSteeringPlanner : public ompl::base::Planner, public FailureReporter {
 }  // namespace
 
 void registerGoalSteering(PlannerRegistry& registry) {
-  registry.add(plannerEntry<PKpieceSettings>(
+  registry.add(plannerEntry<GoalSteeringSettings>(
       "goal-steering",
       "p-KPIECE's goal steering followed from the start motion by motion, without a search: "
       "what the steering alone does, and the first rule it breaks (a diagnosis; p-KPIECE's "
-      "parameters, of which the steering's count)",
-      PKpieceSettings::parameters(),
-      [](const PKpieceSettings& settings, physics::PlanningContext& context) {
+      "parameters, of which the steering's count, and the tree whose steering to follow)",
+      GoalSteeringSettings::parameters(),
+      [](const GoalSteeringSettings& settings, physics::PlanningContext& context) {
         return ompl::base::PlannerPtr(std::make_shared<GoalSteeringPlanner>(context, settings));
       }));
 }

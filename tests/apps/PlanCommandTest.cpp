@@ -252,6 +252,14 @@ TEST_F(PlanCommandTest, PlannersListsEveryPlannerWithItsParameters) {
   for (const char* text : {"KPIECE", "RRT", "goal_bias", "border_fraction", "cell_size",
                            "time_limit", "propagation_step_size", "Goal Bias"})
     EXPECT_NE(run.output.find(text), std::string::npos) << text << "\n" << run.output;
+  // goal-steering takes p-KPIECE's parameters, listed once under p-KPIECE, and one of its own.
+  const std::size_t steering = run.output.find("\ngoal-steering: ");
+  ASSERT_NE(steering, std::string::npos) << run.output;
+  const std::size_t next = run.output.find("\n\n", steering + 1);
+  const std::string listing = run.output.substr(steering, next - steering);
+  EXPECT_NE(listing.find("the parameters of p-KPIECE (below), and"), std::string::npos) << listing;
+  EXPECT_NE(listing.find("    tree "), std::string::npos) << listing;
+  EXPECT_EQ(listing.find("    goal_bias "), std::string::npos) << listing;  // under p-KPIECE
 }
 
 TEST_F(PlanCommandTest, CheckSummarisesAValidProblem) {

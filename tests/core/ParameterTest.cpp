@@ -327,6 +327,36 @@ TEST(SettingsParameters, FillsEveryFieldFromTheValues) {
   EXPECT_TRUE(set.verbose);
 }
 
+struct WrappingSettings {
+  DemoSettings demo;
+  unsigned extra;
+};
+
+TEST(SettingsParameters, IncludesAnotherTablesParametersForAMemberOfItsOwn) {
+  const auto table =
+      SettingsParameters<WrappingSettings>()
+          .include(&WrappingSettings::demo, demoTable())
+          .add(&WrappingSettings::extra,
+               Parameter::integer("extra").byDefault(2).range(0, 10).describe("its own"));
+  std::vector<std::string> names;
+  for (const ParameterSpec& spec : table.specs()) names.push_back(spec.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"bias", "candidates", "offset", "verbose", "cell_size",
+                                             "extra"}));
+  ParameterSet values(table.specs());
+  values.set("k", "9");
+  values.set("extra", "4");
+  const WrappingSettings set = table.read(values);
+  EXPECT_EQ(set.demo.candidates, 9u);
+  EXPECT_DOUBLE_EQ(set.demo.bias, 0.2);
+  EXPECT_EQ(set.extra, 4u);
+  // A name the included table declares already is refused, as a name declared twice.
+  SettingsParameters<WrappingSettings> twice;
+  twice.add(&WrappingSettings::extra,
+            Parameter::integer("offset").byDefault(0).range(0, 1).describe("taken"));
+  EXPECT_THROW(twice.include(&WrappingSettings::demo, demoTable()), std::logic_error);
+  EXPECT_EQ(twice.specs().size(), 1u);  // unchanged
+}
+
 TEST(SettingsParameters, FieldTypeMustMatchTheParameterType) {
   SettingsParameters<DemoSettings> table;
   EXPECT_THROW(table.add(&DemoSettings::bias,

@@ -70,5 +70,30 @@ TEST(GoalSteeringPlannerTest, StopsAtTheFirstRuleBrokenAndSaysWhichObjectBrokeIt
   EXPECT_FALSE(run.replay.reachedGoal);
 }
 
+TEST(GoalSteeringPlannerTest, FollowsTheTreeItIsToldTo) {
+  // kuka_clutter_25 with push_angle_spread 0.4: the first tree's steering pushes straight
+  // across and tips can21; tree 1 pushes at angles of its own and reaches the goal
+  // (scripts/steering-trees.py shows trees 1, 2, 4 and 5 do). With push_angle_after 2, tree 1
+  // pushes straight, as the first tree does.
+  const std::vector<ParameterOverride> spread{{"push_angle_spread", "0.4"}};
+  const Followed first = follow("problems/kuka_clutter_25.xml", spread);
+  EXPECT_FALSE(first.outcome.solved);
+  ASSERT_EQ(first.outcome.candidateFailures.size(), 1u);
+  EXPECT_EQ(first.outcome.candidateFailures[0].object, "can21");
+
+  std::vector<ParameterOverride> treeOne = spread;
+  treeOne.push_back({"tree", "1"});
+  const Followed turned = follow("problems/kuka_clutter_25.xml", treeOne);
+  EXPECT_TRUE(turned.outcome.solved);
+  EXPECT_TRUE(turned.replay.reachedGoal);
+  EXPECT_EQ(turned.replay.firstViolation, physics::Violation::None);
+
+  treeOne.push_back({"push_angle_after", "2"});
+  const Followed held = follow("problems/kuka_clutter_25.xml", treeOne);
+  ASSERT_EQ(held.outcome.controls.size(), first.outcome.controls.size());
+  for (std::size_t i = 0; i < held.outcome.controls.size(); ++i)
+    EXPECT_EQ(held.outcome.controls[i].values, first.outcome.controls[i].values) << i;
+}
+
 }  // namespace
 }  // namespace kautham::planners

@@ -523,6 +523,32 @@ TEST(PKpieceTest, ParallelTreesGiveAFixedSeedsPlanTheSameAtAnyThreads) {
     EXPECT_EQ(run.property(property), again.property(property)) << property;
 }
 
+TEST(PKpieceTest, TurnedPushesGiveAFixedSeedsPlanTheSameAtAnyThreads) {
+  // push_angle_spread: each tree after the first pushes at angles drawn for its number, which
+  // with parallel_trees is its index, whichever process grows it and whenever. kuka_clutter_25,
+  // pKP with trees cut at 300 motions: seed 3's plan comes from a later tree, at any --threads.
+  // With push_angle_after above that tree, every tree up to it pushes straight: another plan.
+  std::vector<ParameterOverride> oneThread{{"uncertainty", "0"},         {"parallel_trees", "1"},
+                                           {"push_angle_spread", "0.4"}, {"tree_motions", "300"},
+                                           {"max_motions", "0"},         {"time_limit", "600"}};
+  const std::string scene = "problems/kuka_clutter_25.xml";
+  const PlanRun run = plan(scene, "p-KPIECE", 3, oneThread);
+  ASSERT_TRUE(run.outcome.solved);
+  EXPECT_TRUE(run.replay.reachedGoal) << physics::toString(run.replay.firstViolation);
+  const long tree = std::stol(run.property("restarts"));  // the plan's tree
+  EXPECT_GE(tree, 1);
+  const PlanRun again = plan(scene, "p-KPIECE", 3, withTwoThreads(oneThread));
+  expectSameControls(run, again);
+  EXPECT_EQ(run.property("restarts"), again.property("restarts"));
+
+  std::vector<ParameterOverride> straight = oneThread;
+  straight.push_back({"push_angle_after", std::to_string(tree + 1)});
+  const PlanRun held = plan(scene, "p-KPIECE", 3, withTwoThreads(straight));
+  EXPECT_TRUE(held.property("restarts") != run.property("restarts") ||
+              held.outcome.controls.size() != run.outcome.controls.size() ||
+              held.outcome.controls.front().values != run.outcome.controls.front().values);
+}
+
 TEST(PKpieceTest, ParallelTreesEndingInTheFirstTreeGiveTheUsualPlan) {
   // The first tree draws on from the planner's own streams: a search that ends there (seed 4
   // here) gives the plan it gives without parallel_trees.

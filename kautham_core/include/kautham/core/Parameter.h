@@ -157,6 +157,20 @@ class SettingsParameters {
     });
     return *this;
   }
+  /// Every parameter of `inner`, a table of the struct's member `member`: a planner whose
+  /// settings hold another's (a diagnosis that takes p-KPIECE's parameters and some of its own)
+  /// declares them once, where the other does.
+  template <typename Inner>
+  SettingsParameters& include(Inner Settings::*member, const SettingsParameters<Inner>& inner) {
+    std::vector<ParameterSpec> all = specs_;
+    all.insert(all.end(), inner.specs().begin(), inner.specs().end());
+    checkSpecs(all);
+    specs_ = std::move(all);
+    assign_.push_back([member, inner](Settings& settings, const ParameterSet& values) {
+      settings.*member = inner.read(values);
+    });
+    return *this;
+  }
   /// A parameter with no field of the struct: the framework applies it (see the class).
   SettingsParameters& add(const Parameter& parameter) {
     checkAdding(parameter.spec());
