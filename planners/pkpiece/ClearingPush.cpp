@@ -56,6 +56,8 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
       slide_(settings.crowdedSlide),
       end_(end),
       angleSpread_(settings.angleSpread),
+      // The first tree pushes straight whatever the setting: its plans stay those of the
+      // search without the spread.
       angleAfter_(std::max<std::uint64_t>(settings.angleAfter, 1)) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
