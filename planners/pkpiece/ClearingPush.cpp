@@ -2,13 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <limits>
 
 #include <Eigen/Geometry>
 
 #include "kautham/core/ApproachCorridor.h"
-#include "kautham/core/Random.h"
 #include "kautham/core/SegmentDistance.h"
 
 namespace kautham::planners {
@@ -55,10 +53,8 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
       belowCentre_(settings.belowCentre),
       slide_(settings.crowdedSlide),
       end_(end),
-      angleSpread_(settings.angleSpread),
-      // The first tree pushes straight whatever the setting: its plans stay those of the
-      // search without the spread.
-      angleAfter_(std::max<std::uint64_t>(settings.angleAfter, 1)) {
+      angles_({settings.angleSpread, settings.angleAfter, settings.angleGeneration},
+              context.layout().bodies.size()) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {
@@ -131,6 +127,30 @@ std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const 
   return std::nullopt;
 }
 
+std::optional<double> ClearingPush::clearingLeft(const double* state) const {
+  if (halfWidth_ <= 0.0) return std::nullopt;
+  // The same blockers, in the same order, as next(); measured across the approach only, so a
+  // push turned towards the target is not nearer for its angle alone.
+  std::optional<std::size_t> inFreeSpace = context_.goal().freeSpaceBlocker(state);
+  if (inFreeSpace && end_ && end_->shifts() && end_->anyClearPose(state)) inFreeSpace.reset();
+  if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
+    return reachAcross(state, *inCorridor) +
+           (inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0);
+  if (inFreeSpace) return reachAcross(state, *inFreeSpace);
+  return std::nullopt;
+}
+
+double ClearingPush::reachAcross(const double* state, std::size_t body) const {
+  const auto footprint = std::find_if(footprints_.begin(), footprints_.end(),
+                                      [body](const Footprint& f) { return f.body == body; });
+  if (footprint == footprints_.end()) return 0.0;
+  const Eigen::AlignedBox3d now =
+      footprint->bounds.translated(physics::WorldLayout::position(state, body) - footprint->start);
+  const core::Interval across = core::projectFootprint(now, context_.goal().position().head<2>(),
+                                                       across_.head<2>().normalized());
+  return std::max(0.0, std::min(across.hi + halfWidth_, halfWidth_ - across.lo));
+}
+
 const ClearingPush::Posture& ClearingPush::choosePosture(const double* state, std::size_t blocker,
                                                          const Posture& own) const {
   if (crowded_.pitch <= own.pitch) return own;
@@ -168,15 +188,7 @@ const ClearingPush::Posture& ClearingPush::nearer(double pitch, const Posture& a
   return std::abs(pitch - b.pitch) < std::abs(pitch - a.pitch) ? b : a;
 }
 
-double ClearingPush::pushAngle(std::size_t blocker) const {
-  if (tree_ < angleAfter_ || angleSpread_ <= 0.0) return 0.0;
-  // A hash of the tree and the object: the same object is pushed at the same angle all through a
-  // tree, whatever state the push is steered from.
-  const std::uint64_t h =
-      core::mix64(tree_ * 0x9E3779B97F4A7C15ULL ^ (blocker + 1) * 0xBF58476D1CE4E5B9ULL);
-  const double unit = static_cast<double>(h >> 11) * 0x1.0p-53;  // in [0, 1)
-  return angleSpread_ * (2.0 * unit - 1.0);
-}
+double ClearingPush::pushAngle(std::size_t blocker) const { return angles_.angle(blocker); }
 
 Eigen::Vector3d ClearingPush::pushDirection(double side, std::size_t blocker) const {
   // Across the approach, turned towards the target (+) or away from it by the push's angle.

@@ -73,6 +73,13 @@ double GoalSteering::rankDistance(const double* state) const {
   return context_.goal().searchDistance(state);
 }
 
+double GoalSteering::learningRank(const double* state) const {
+  if (clearingOn_)
+    if (const std::optional<double> left = clearing_.clearingLeft(state))
+      return kBlockedRank + *left;
+  return context_.goal().searchDistance(state);
+}
+
 std::optional<NominalMotion> GoalSteering::towardsGoal(const double* start) const {
   if (context_.goal().spec().joints.size() > 0) return std::nullopt;
   // While an object fills the goal's free space, the straight move at the goal point only

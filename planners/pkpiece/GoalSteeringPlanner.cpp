@@ -5,8 +5,10 @@
 // steering alone").
 
 #include <algorithm>
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -69,6 +71,13 @@ class GoalSteeringPlanner : public ompl::base::Planner, public FailureReporter {
         evaluator_(context, settings_.displacement),  // only particles judge the displacement
         steering_(context, evaluator_, settings_.clearingPush, pushSettingsOf(settings_),
                   settings_.kinematicSteering, approachSettingsOf(settings_)) {
+    // A learned tree's angles come from the trees p-KPIECE grew before it, which are not here.
+    if (const std::uint64_t before = steering_.pushAngles().treesBefore(chosen.tree))
+      throw std::invalid_argument(
+          "goal-steering: tree " + std::to_string(chosen.tree) +
+          " pushes at angles learned from p-KPIECE's trees before it (push_angle_generation), "
+          "which goal-steering does not grow: follow a tree below " +
+          std::to_string(before) + ", or set push_angle_generation=0");
     steering_.setTree(chosen.tree);
     specs_.approximateSolutions = true;
     if (settings_.tiltMargin < 1.0)

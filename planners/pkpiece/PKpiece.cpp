@@ -169,6 +169,7 @@ void PKpiece::clear() {
   grid_.clear();
   cells_.clear();
   treeBestRank_ = std::numeric_limits<double>::infinity();
+  treeLearningRank_ = std::numeric_limits<double>::infinity();
   goalStarts_.clear();
   iteration_ = 1;
   beliefMeanSum_ = 0.0;
@@ -183,6 +184,7 @@ void PKpiece::clear() {
   expansionsSinceProgress_ = 0;
   treeStart_ = 0;
   motionBudgetSpent_ = false;
+  steering_.pushAngles().forget();  // a new search starts again from tree 0
 }
 
 void PKpiece::resetCounters() {
@@ -251,6 +253,9 @@ void PKpiece::addMotion(Motion* motion) {
   motion->cell = &data;
 
   treeBestRank_ = std::min(treeBestRank_, motion->goalDistance);
+  if (steering_.pushAngles().learns())
+    treeLearningRank_ = std::min(
+        treeLearningRank_, steering_.learningRank(physics::WorldStateSpace::values(motion->state)));
   if (!closest_ || motion->goalDistance < closest_->goalDistance) closest_ = motion;
   if (mayEndAPlan(*motion)) keepIfNear(goalStarts_, motion);
 }
@@ -970,6 +975,8 @@ void PKpiece::tallyBrokenRule(const NominalRun& run, bool steered) {
 }
 
 void PKpiece::startAfresh() {
+  // How near the tree got is what later trees' push angles learn from.
+  steering_.pushAngles().record(restarts_, treeLearningRank_);
   ++restarts_;
   startTree(restarts_);
 }
@@ -979,6 +986,7 @@ void PKpiece::startTree(std::size_t tree) {
   grid_.clear();
   cells_.clear();
   treeBestRank_ = std::numeric_limits<double>::infinity();
+  treeLearningRank_ = std::numeric_limits<double>::infinity();
   goalStarts_.clear();
   iteration_ = 1;  // cells' ages count from the new tree's first expansion, as the first tree's
   beliefMeanSum_ = 0.0;

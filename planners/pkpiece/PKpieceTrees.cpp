@@ -105,6 +105,8 @@ std::vector<unsigned char> PKpiece::growTreeForSearch(
   std::vector<unsigned char> bytes;
   Packer pack(bytes);
   pack.put(static_cast<std::uint64_t>(end));
+  pack.put(std::uint64_t{tree});
+  pack.put(treeLearningRank_);
   for (std::uint64_t* count : searchCounts()) pack.put(*count);
   for (const std::uint64_t count :
        {steering_.jacobianAims(), evaluator_.particleCount(), evaluator_.certainEarly(),
@@ -153,6 +155,9 @@ PKpiece::TreeEnd PKpiece::settleTree(const std::vector<unsigned char>& result) {
   if (endValue > static_cast<std::uint64_t>(TreeEnd::Stopped))
     throw std::runtime_error("p-KPIECE: a tree's result is corrupt");
   const auto end = static_cast<TreeEnd>(endValue);
+  const std::uint64_t tree = unpack.u64();
+  // How near the tree got is what later trees' push angles learn from.
+  steering_.pushAngles().record(tree, unpack.real());
   for (std::uint64_t* count : searchCounts()) *count += unpack.u64();
   steering_.addJacobianAims(unpack.u64());
   const std::uint64_t particles = unpack.u64();
@@ -223,6 +228,10 @@ ompl::base::PlannerStatus PKpiece::solveTreeByTree(
     return settleTree(result) == TreeEnd::Verified;
   };
   order.stop = [this, &ptc] { return ptc() || pastDeadline(); };
+  // A tree whose push angles are learned starts once the trees they learn from are taken in.
+  order.takenInBefore = [this](std::size_t tree) {
+    return static_cast<std::size_t>(steering_.pushAngles().treesBefore(tree));
+  };
   const TreesTaken taken = takeTreesInOrder(trees, order);
   discardedTrees_ += taken.started - taken.takenIn;
   restarts_ += taken.takenIn > 0 ? taken.takenIn - 1 : 0;

@@ -17,7 +17,8 @@ TreesTaken takeTreesInOrder(TreeProcesses& trees, const TreeOrder& order) {
   bool ended = false;
   while (!ended) {
     if (!order.stop()) {
-      while (!trees.full() && (!firstEnding || taken.started < *firstEnding))
+      while (!trees.full() && (!firstEnding || taken.started < *firstEnding) &&
+             (!order.takenInBefore || taken.takenIn >= order.takenInBefore(taken.started)))
         trees.start(taken.started++);
     } else if (!killAt) {
       killAt = Clock::now() + order.grace;

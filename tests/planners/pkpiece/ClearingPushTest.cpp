@@ -130,6 +130,44 @@ TEST(ClearingPushTest, BlockedStatesRankBehindClearOnesByWhatRemainsOfThePush) {
               1e-12);
 }
 
+TEST(ClearingPushTest, TheLearningRankMeasuresTheBlockerAcrossWhateverThePushesAngle) {
+  // What the push angles learn from (push_angle_generation) must not favour an angle for itself:
+  // the rank the goal bias grows by counts the push's length still to go, which a push turned
+  // towards the target shortens. The learning rank counts only how far can1 still reaches across
+  // into the free space (the approach is +y: across is x).
+  ClutterScene scene;
+  MotionEvaluator evaluator(scene.context, 0.3);
+  PushSettings turnedPush = kPush;
+  turnedPush.angleSpread = 0.8;
+  const GoalSteering straight(scene.context, evaluator, true, kPush, false);
+  GoalSteering turned(scene.context, evaluator, true, turnedPush, false);
+  turned.setTree(1);
+  const std::vector<double>& start = scene.context.startState();
+  EXPECT_GT(std::abs(turned.rankDistance(start.data()) - straight.rankDistance(start.data())),
+            0.005);
+  const double blocked = straight.learningRank(start.data());
+  EXPECT_GT(blocked, GoalSteering::kBlockedRank);
+  EXPECT_LT(blocked, GoalSteering::kBlockedRank + 0.2);  // at most the free space's width and can
+  EXPECT_DOUBLE_EQ(turned.learningRank(start.data()), blocked);
+
+  const std::size_t can = scene.body("can1") * physics::WorldLayout::kBodyStateSize;
+  const auto movedBy = [&](double dx, double dy) {
+    std::vector<double> moved = start;
+    moved[can] += dx;
+    moved[can + 1] += dy;
+    return straight.learningRank(moved.data());
+  };
+  // Moved across, out of the free space by the side it is nearer, it is nearer by as much.
+  for (const double across : {0.01, 0.03})
+    EXPECT_NEAR(std::min(movedBy(across, 0.0), movedBy(-across, 0.0)), blocked - across, 1e-9);
+  EXPECT_NEAR(movedBy(0.0, 0.005), blocked, 1e-9);  // along the approach: no nearer
+  // Cleared, it is the search distance, as the rank the goal bias grows by.
+  std::vector<double> cleared = start;
+  cleared[can] += 0.2;
+  EXPECT_NEAR(straight.learningRank(cleared.data()),
+              scene.context.goal().searchDistance(cleared.data()), 1e-12);
+}
+
 TEST(ClearingPushTest, SteeringHeadsForTheStandOffWhileTheFreeSpaceIsBlocked) {
   ClutterScene scene;
   MotionEvaluator evaluator(scene.context, 0.3);

@@ -113,5 +113,35 @@ TEST(TreesInOrderTest, TreesAfterTheOneThatEndsTheSearchStopAndLendTheirCores) {
   EXPECT_TRUE(processes.idle());
 }
 
+TEST(TreesInOrderTest, ATreeThatLearnsFromEarlierOnesStartsOnceTheyAreTakenIn) {
+  // Trees 2 and 3 learn from trees 0 and 1 (takenInBefore 2): with two processes, tree 2 would
+  // start as soon as tree 1 finishes, while tree 0 still grows. Each tree's process is a copy of
+  // the search as it started, so a tree's result can say how many trees were taken in by then.
+  std::vector<int> takenOrder;
+  TreeProcesses processes(
+      2, [&takenOrder](std::size_t tree, TreeProcesses::LentCores&) -> std::vector<unsigned char> {
+        if (tree == 0) std::this_thread::sleep_for(300ms);  // tree 1 finishes first
+        return {static_cast<unsigned char>(tree == 3 ? 1 : 0), static_cast<unsigned char>(tree),
+                static_cast<unsigned char>(takenOrder.size())};
+      });
+  std::vector<TreeOrder::Result> results;
+  TreeOrder order;
+  order.ends = [](const TreeOrder::Result& r) { return r.at(0) == 1; };
+  order.takeIn = [&](const TreeOrder::Result& r) {
+    takenOrder.push_back(r.at(1));
+    results.push_back(r);
+    return r.at(0) == 1;
+  };
+  order.takenInBefore = [](std::size_t tree) -> std::size_t { return tree >= 2 ? 2 : 0; };
+  const auto guard = std::chrono::steady_clock::now() + 60s;  // against a hang, not timing
+  order.stop = [guard] { return std::chrono::steady_clock::now() > guard; };
+  takeTreesInOrder(processes, order);
+  ASSERT_EQ(takenOrder, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(results[0].at(2), 0);  // trees 0 and 1 started at once
+  EXPECT_EQ(results[1].at(2), 0);
+  EXPECT_GE(results[2].at(2), 2);  // trees 2 and 3 after both were taken in
+  EXPECT_GE(results[3].at(2), 2);
+}
+
 }  // namespace
 }  // namespace kautham::planners

@@ -9,6 +9,7 @@
 
 #include "kautham/physics/PlanningContext.h"
 #include "kautham/planners/pkpiece/GoalEnd.h"
+#include "kautham/planners/pkpiece/PushAngles.h"
 
 namespace kautham::planners {
 
@@ -29,7 +30,7 @@ Transfer transferOver(const Eigen::Vector3d& link, const Eigen::Vector3d& target
 double pitchBelowLevel(const Eigen::Matrix3d& turn);
 
 /// How the clearing push is done: p-KPIECE's push_pitch, clear_behind, corridor_pitch,
-/// push_below_centre, push_speed, crowded_pitch and crowded_slide parameters.
+/// push_below_centre, push_speed, crowded_pitch, crowded_slide and push_angle_* parameters.
 struct PushSettings {
   double pitch = 0.0;          ///< rad the gripper points down on the way to and during a push
   double behind = 0.0;         ///< m behind the goal point the corridor is cleared (0: not)
@@ -53,6 +54,9 @@ struct PushSettings {
   /// With an angle spread, the first tree whose pushes turn: the trees numbered below it push
   /// straight across, as the first does.
   std::uint64_t angleAfter = 1;
+  /// With an angle spread, the trees per generation whose angles are learned from the trees
+  /// before (PushAngles); 0: every tree draws its angles afresh.
+  std::uint64_t angleGeneration = 0;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the
@@ -109,13 +113,20 @@ class ClearingPush {
   /// How high the goal link travels between pushes: above the tallest movable object's top (at
   /// its home), within the workspace.
   double travelHeight() const { return travelHeight_; }
+  /// How much clearing is left in `state`, by a measure that does not depend on the pushes'
+  /// angles (what PushAngles learns from): none when next() has nothing to clear; else how far
+  /// the object being cleared still reaches across into the free space's width (m), plus
+  /// kLaterPush when the free space's own push is still to come after it.
+  std::optional<double> clearingLeft(const double* state) const;
   /// The movable object in the corridor behind the goal point that is pushed first (the one
   /// furthest back), if any.
   std::optional<std::size_t> corridorBlocker(const double* state) const;
   /// Which of p-KPIECE's trees the pushes are for: with an angle spread, each tree from
-  /// PushSettings::angleAfter on pushes each object at an angle of its own
-  /// (PushSettings::angleSpread).
-  void setTree(std::uint64_t tree) { tree_ = tree; }
+  /// PushSettings::angleAfter on pushes each object at an angle of its own (PushAngles).
+  void setTree(std::uint64_t tree) { angles_.setTree(tree); }
+  /// The angles the trees push at, and how near each tree got (what later trees learn from).
+  PushAngles& angles() { return angles_; }
+  const PushAngles& angles() const { return angles_; }
 
  private:
   /// How the gripper is held during a push: pitched down by `pitch`, turned as `orientation`,
@@ -167,6 +178,9 @@ class ClearingPush {
                      double reach) const;
   /// Whether `link` is low on the slide into `start` (within kOnLine of the line back from it).
   bool sliding(const Eigen::Vector3d& link, const Eigen::Vector3d& start) const;
+  /// How far `body`'s footprint reaches across into the free space's width in `state` (m): the
+  /// shorter move across the approach that takes it out (0: out).
+  double reachAcross(const double* state, std::size_t body) const;
   /// How near the stand-off at `point` (and the footprint `reach` behind it) the other objects
   /// stand.
   double room(const double* state, const Eigen::Vector3d& point, std::size_t blocker,
@@ -193,9 +207,7 @@ class ClearingPush {
   double belowCentre_ = 0.0;
   double slide_ = 0.0;  ///< PushSettings::crowdedSlide
   const GoalEnd* end_ = nullptr;
-  double angleSpread_ = 0.0;      ///< PushSettings::angleSpread
-  std::uint64_t angleAfter_ = 1;  ///< PushSettings::angleAfter
-  std::uint64_t tree_ = 0;        ///< setTree()
+  PushAngles angles_;
 };
 
 }  // namespace kautham::planners

@@ -28,8 +28,9 @@ struct ApproachSettings {
 
 /// The clearing push as p-KPIECE's parameters set it.
 inline PushSettings pushSettingsOf(const PKpieceSettings& s) {
-  return {s.pushPitch,    s.clearBehind,  s.corridorPitch,   s.pushBelowCentre, s.pushSpeed,
-          s.crowdedPitch, s.crowdedSlide, s.pushAngleSpread, s.pushAngleAfter};
+  return {s.pushPitch,      s.clearBehind,        s.corridorPitch, s.pushBelowCentre,
+          s.pushSpeed,      s.crowdedPitch,       s.crowdedSlide,  s.pushAngleSpread,
+          s.pushAngleAfter, s.pushAngleGeneration};
 }
 /// The approach as p-KPIECE's parameters set it.
 inline ApproachSettings approachSettingsOf(const PKpieceSettings& s) {
@@ -83,12 +84,21 @@ class GoalSteering {
   /// distance, or while the free space is blocked (and clearing is on) kBlockedRank plus
   /// what remains of the clearing push.
   double rankDistance(const double* state) const;
+  /// How near `state` is to the goal by a measure that does not depend on the trees' push
+  /// angles, for PushAngles to learn from: the search distance, or while the free space is
+  /// blocked (and clearing is on) kBlockedRank plus ClearingPush::clearingLeft(). rankDistance()
+  /// would do for neither: the length of a push still to go shrinks as it turns towards the
+  /// target (docs/planners.md, "Learned from the trees before").
+  double learningRank(const double* state) const;
   /// Motions aimed by the Jacobian (inverse kinematics found no pose, or `kinematic` is off)
   /// since construction or resetCount().
   std::uint64_t jacobianAims() const { return jacobianAims_; }
   void resetCount() { jacobianAims_ = 0; }
   /// Which of p-KPIECE's trees it steers for (ClearingPush::setTree).
   void setTree(std::uint64_t tree) { clearing_.setTree(tree); }
+  /// The angles the trees push at, which learn from how near each tree got (PushAngles).
+  PushAngles& pushAngles() { return clearing_.angles(); }
+  const PushAngles& pushAngles() const { return clearing_.angles(); }
   /// Adds aims made elsewhere (a tree grown in a process of its own).
   void addJacobianAims(std::uint64_t aims) { jacobianAims_ += aims; }
 

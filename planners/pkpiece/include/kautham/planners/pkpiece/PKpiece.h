@@ -284,6 +284,9 @@ class PKpiece : public ompl::base::Planner,
   std::vector<std::unique_ptr<CellData>> cells_;
   /// The goal bias's rank of the current tree's motion nearest the goal (restartAfter).
   double treeBestRank_ = std::numeric_limits<double>::infinity();
+  /// The nearest the tree got by GoalSteering::learningRank, when the push angles learn
+  /// (PushAngles::learns): what the trees after it learn from.
+  double treeLearningRank_ = std::numeric_limits<double>::infinity();
   /// The motions nearest the goal among those a solution may grow from (see addMotion), nearest
   /// first.
   std::vector<Motion*> goalStarts_;

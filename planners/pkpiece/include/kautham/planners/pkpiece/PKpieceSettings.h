@@ -99,6 +99,9 @@ struct PKpieceSettings {
   /// With pushAngleSpread, the first tree whose pushes turn: the trees numbered below it push
   /// straight across (PushSettings::angleAfter).
   unsigned pushAngleAfter;
+  /// With pushAngleSpread, the trees per generation whose push angles are learned from the
+  /// trees before it (PushSettings::angleGeneration; 0: drawn afresh for every tree).
+  unsigned pushAngleGeneration;
   /// How far from the goal point a plan may aim to end (m) where an object reaches into the
   /// free space there but not at the nearer end (0: the goal point only).
   double goalShift;
@@ -370,6 +373,16 @@ inline const core::SettingsParameters<PKpieceSettings>& PKpieceSettings::paramet
                    .describe("with push_angle_spread, the trees numbered from this one on push "
                              "at angles of their own; the ones before push straight across, as "
                              "the first does (1: every tree after the first)"))
+          .add(&S::pushAngleGeneration,
+               Parameter::integer("push_angle_generation")
+                   .byDefault(0)
+                   .range(0, 1000)
+                   .describe("experimental, measured worse than drawing afresh on the dense "
+                             "YuMi scenes: with push_angle_spread, learn the angles: the trees "
+                             "from push_angle_after on come in generations of this many, and each "
+                             "generation after the first draws each object's angle from a normal "
+                             "fitted to the nearest quarter of the trees before it (0: every "
+                             "tree draws afresh)"))
           .add(&S::goalShift,
                Parameter::real("goal_shift")
                    .byDefault(0.0)

@@ -18,6 +18,9 @@ struct TreeOrder {
   std::function<bool(const Result&)> takeIn;
   /// Whether the search must stop (its termination condition, the time limit).
   std::function<bool()> stop;
+  /// How many trees (0, 1, ...) must be taken in before `tree` may start: a tree that learns
+  /// from the ones before it waits for them. Unset: none.
+  std::function<std::size_t(std::size_t tree)> takenInBefore;
   /// Once stop() holds, how long the trees still growing have to end on their own before they
   /// are killed: they see the time limit themselves, not a condition only this process sees
   /// (Ctrl-C).
@@ -32,7 +35,8 @@ struct TreesTaken {
   std::size_t takenIn = 0;  ///< results handed to takeIn
 };
 
-/// Starts trees 0, 1, 2... as `trees` has room and hands their results to `order.takeIn` in index
+/// Starts trees 0, 1, 2... as `trees` has room (and each has the trees it needs taken in:
+/// `order.takenInBefore`) and hands their results to `order.takeIn` in index
 /// order, whatever order they finish in, until one ends the search: tree k's result waits for
 /// trees 0..k-1, so a later tree's plan is never taken before an earlier tree's, and the plan does
 /// not depend on how many trees grow at once. No tree after one whose result ends the search is
