@@ -113,30 +113,34 @@ std::optional<std::size_t> ClearingPush::corridorBlocker(const double* state) co
   return furthest;
 }
 
-std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const {
-  if (halfWidth_ <= 0.0) return std::nullopt;
+ClearingPush::Blockers ClearingPush::blockers(const double* state) const {
+  Blockers found;
+  if (halfWidth_ <= 0.0) return found;
   // An object reaching into the free space only where a nearby end leaves it clear needs no
   // push: the gripper ends there.
-  std::optional<std::size_t> inFreeSpace = context_.goal().freeSpaceBlocker(state);
-  if (inFreeSpace && end_ && end_->shifts() && end_->anyClearPose(state)) inFreeSpace.reset();
+  found.freeSpace = context_.goal().freeSpaceBlocker(state);
+  if (found.freeSpace && end_ && end_->shifts() && end_->anyClearPose(state))
+    found.freeSpace.reset();
+  found.corridor = corridorBlocker(state);
   // The corridor first; after it, the free space (a push of its own, counted as kLaterPush).
-  if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
-    return pushStep(state, *inCorridor,
-                    inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0, corridor_);
-  if (inFreeSpace) return pushStep(state, *inFreeSpace, 0.0, push_);
+  if (found.corridor && found.freeSpace && *found.freeSpace != *found.corridor)
+    found.later = kLaterPush;
+  return found;
+}
+
+std::optional<ClearingPush::Step> ClearingPush::next(const double* state) const {
+  const Blockers found = blockers(state);
+  if (found.corridor) return pushStep(state, *found.corridor, found.later, corridor_);
+  if (found.freeSpace) return pushStep(state, *found.freeSpace, 0.0, push_);
   return std::nullopt;
 }
 
 std::optional<double> ClearingPush::clearingLeft(const double* state) const {
-  if (halfWidth_ <= 0.0) return std::nullopt;
-  // The same blockers, in the same order, as next(); measured across the approach only, so a
-  // push turned towards the target is not nearer for its angle alone.
-  std::optional<std::size_t> inFreeSpace = context_.goal().freeSpaceBlocker(state);
-  if (inFreeSpace && end_ && end_->shifts() && end_->anyClearPose(state)) inFreeSpace.reset();
-  if (const std::optional<std::size_t> inCorridor = corridorBlocker(state))
-    return reachAcross(state, *inCorridor) +
-           (inFreeSpace && *inFreeSpace != *inCorridor ? kLaterPush : 0.0);
-  if (inFreeSpace) return reachAcross(state, *inFreeSpace);
+  // The blockers next() pushes, measured across the approach only, so that a push turned towards
+  // the target is not nearer for its angle alone.
+  const Blockers found = blockers(state);
+  if (found.corridor) return reachAcross(state, *found.corridor) + found.later;
+  if (found.freeSpace) return reachAcross(state, *found.freeSpace);
   return std::nullopt;
 }
 

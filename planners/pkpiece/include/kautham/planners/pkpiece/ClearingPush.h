@@ -139,6 +139,13 @@ class ClearingPush {
     double reach = 0.0;
   };
   Posture posture(double pitch) const;
+  /// What next() clears in a state: the corridor's object first, then the free space's.
+  struct Blockers {
+    std::optional<std::size_t> corridor;
+    std::optional<std::size_t> freeSpace;
+    double later = 0.0;  ///< kLaterPush when the free space's push comes after the corridor's
+  };
+  Blockers blockers(const double* state) const;
   /// The push that clears `blocker`, held as `own` (or crowded); `later` (m) stands for the
   /// clearing still to come after it (in the remaining length).
   Step pushStep(const double* state, std::size_t blocker, double later, const Posture& own) const;
