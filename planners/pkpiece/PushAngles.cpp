@@ -29,7 +29,7 @@ std::uint64_t keyOf(std::uint64_t tree, std::size_t body) {
 }  // namespace
 
 PushAngles::PushAngles(const Settings& settings, std::size_t bodies)
-    : settings_(settings), bodies_(bodies) {
+    : settings_(settings), bodies_(bodies), current_(bodies, 0.0) {
   // The first tree pushes straight whatever the setting: its plans stay those of the search
   // without the spread.
   settings_.after = std::max<std::uint64_t>(settings_.after, 1);
@@ -49,9 +49,13 @@ void PushAngles::setTree(std::uint64_t tree) {
   if (settings_.spread > 0.0)
     while (fits_.size() < generationOf(tree)) fitNextGeneration();
   tree_ = tree;
+  // Drawn once per tree: the steering asks for an object's angle several times per motion.
+  for (std::size_t body = 0; body < bodies_; ++body) current_[body] = angleOf(tree, body);
 }
 
-double PushAngles::angle(std::size_t body) const { return angleOf(tree_, body); }
+double PushAngles::angle(std::size_t body) const {
+  return body < bodies_ ? current_[body] : angleOf(tree_, body);
+}
 
 double PushAngles::angleOf(std::uint64_t tree, std::size_t body) const {
   if (tree < settings_.after || settings_.spread <= 0.0) return 0.0;
@@ -110,6 +114,7 @@ void PushAngles::forget() {
   ranks_.clear();
   fits_.clear();
   tree_ = 0;
+  std::fill(current_.begin(), current_.end(), 0.0);
 }
 
 }  // namespace kautham::planners

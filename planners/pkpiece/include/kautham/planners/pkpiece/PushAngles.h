@@ -67,7 +67,8 @@ class PushAngles {
   Settings settings_;
   std::size_t bodies_;
   std::uint64_t tree_ = 0;
-  std::vector<double> ranks_;  ///< by tree; NaN: not recorded
+  std::vector<double> current_;  ///< by body: the angles of tree_
+  std::vector<double> ranks_;    ///< by tree; NaN: not recorded
   /// fits_[g - 1][body]: what generation g (>= 1) draws from.
   std::vector<std::vector<Normal>> fits_;
 };
