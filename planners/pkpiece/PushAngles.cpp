@@ -40,28 +40,29 @@ std::uint64_t PushAngles::generationOf(std::uint64_t tree) const {
   return (tree - settings_.after) / settings_.generation;
 }
 
+std::uint64_t PushAngles::generationStart(std::uint64_t generation) const {
+  return settings_.after + generation * settings_.generation;
+}
+
 std::uint64_t PushAngles::treesBefore(std::uint64_t tree) const {
   const std::uint64_t generation = generationOf(tree);
-  return generation == 0 ? 0 : settings_.after + generation * settings_.generation;
+  return generation == 0 ? 0 : generationStart(generation);
 }
 
 void PushAngles::setTree(std::uint64_t tree) {
   if (settings_.spread > 0.0)
     while (fits_.size() < generationOf(tree)) fitNextGeneration();
-  tree_ = tree;
   // Drawn once per tree: the steering asks for an object's angle several times per motion.
   for (std::size_t body = 0; body < bodies_; ++body) current_[body] = angleOf(tree, body);
 }
 
-double PushAngles::angle(std::size_t body) const {
-  return body < bodies_ ? current_[body] : angleOf(tree_, body);
-}
+double PushAngles::angle(std::size_t body) const { return current_.at(body); }
 
 double PushAngles::angleOf(std::uint64_t tree, std::size_t body) const {
   if (tree < settings_.after || settings_.spread <= 0.0) return 0.0;
   const std::uint64_t key = keyOf(tree, body);
   const std::uint64_t generation = generationOf(tree);
-  if (generation == 0 || body >= bodies_) {
+  if (generation == 0) {
     const double unit = static_cast<double>(key >> 11) * 0x1.0p-53;  // in [0, 1)
     return settings_.spread * (2.0 * unit - 1.0);
   }
@@ -73,7 +74,7 @@ double PushAngles::angleOf(std::uint64_t tree, std::size_t body) const {
 
 void PushAngles::fitNextGeneration() {
   const std::uint64_t generation = fits_.size() + 1;
-  const std::uint64_t end = settings_.after + generation * settings_.generation;
+  const std::uint64_t end = generationStart(generation);
   std::vector<std::uint64_t> trees;
   for (std::uint64_t t = settings_.after; t < end; ++t) {
     if (t >= ranks_.size() || std::isnan(ranks_[t]))
@@ -113,7 +114,6 @@ void PushAngles::record(std::uint64_t tree, double rank) {
 void PushAngles::forget() {
   ranks_.clear();
   fits_.clear();
-  tree_ = 0;
   std::fill(current_.begin(), current_.end(), 0.0);
 }
 

@@ -126,7 +126,6 @@ class ClearingPush {
   void setTree(std::uint64_t tree) { angles_.setTree(tree); }
   /// The angles the trees push at, and how near each tree got (what later trees learn from).
   PushAngles& angles() { return angles_; }
-  const PushAngles& angles() const { return angles_; }
 
  private:
   /// How the gripper is held during a push: pitched down by `pitch`, turned as `orientation`,

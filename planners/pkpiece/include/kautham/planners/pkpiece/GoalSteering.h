@@ -98,7 +98,6 @@ class GoalSteering {
   void setTree(std::uint64_t tree) { clearing_.setTree(tree); }
   /// The angles the trees push at, which learn from how near each tree got (PushAngles).
   PushAngles& pushAngles() { return clearing_.angles(); }
-  const PushAngles& pushAngles() const { return clearing_.angles(); }
   /// Adds aims made elsewhere (a tree grown in a process of its own).
   void addJacobianAims(std::uint64_t aims) { jacobianAims_ += aims; }
 

@@ -57,8 +57,10 @@ class PushAngles {
     double mean = 0.0;
     double sd = 0.0;
   };
-  /// The generation of `tree` (at least `after`).
+  /// The generation of `tree` (0 below `after`, and without generations).
   std::uint64_t generationOf(std::uint64_t tree) const;
+  /// The first tree of `generation`.
+  std::uint64_t generationStart(std::uint64_t generation) const;
   /// The angle at which `tree` pushes `body`, with the fits that tree's generation needs made.
   double angleOf(std::uint64_t tree, std::size_t body) const;
   /// Fits generation fits_.size() + 1's distributions to the trees before it.
@@ -66,8 +68,7 @@ class PushAngles {
 
   Settings settings_;
   std::size_t bodies_;
-  std::uint64_t tree_ = 0;
-  std::vector<double> current_;  ///< by body: the angles of tree_
+  std::vector<double> current_;  ///< by body: the angles of the tree setTree() was given
   std::vector<double> ranks_;    ///< by tree; NaN: not recorded
   /// fits_[g - 1][body]: what generation g (>= 1) draws from.
   std::vector<std::vector<Normal>> fits_;
