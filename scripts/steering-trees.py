@@ -6,11 +6,12 @@ of its own (docs/planners.md). This follows the steering of trees 0 to N-1 alone
 search (`kautham plan FILE --planner goal-steering --set tree=K`), and prints one line per tree:
 whether it reached the goal, how far from the goal it ended, after how many motions, and the
 rule it broke (by which object) or why else it stopped. Then the trees that reached the goal,
-and the distinct ends, most frequent first. The angles depend on the tree's number and the
-object only, not on the seed: a tree whose steering alone reaches the goal does so in every run.
+and the distinct ends, most frequent first. The angles depend on the seed, the tree's number and the
+object only: under the same `--seed` a tree whose steering alone reaches the goal does so in
+every run, and p-KPIECE's search with that seed grows that tree with those pushes.
 
 Usage: python3 scripts/steering-trees.py problems/yumi_clutter_35.xml --trees 100 \\
-           --set push_angle_spread=0.8
+           --seed 1 --set push_angle_spread=0.8
 Runs $KAUTHAM or build/apps/kautham. Exit codes: 0 done, 2 bad input (a missing file, a
 `kautham plan` that fails: its message is printed).
 """
@@ -24,12 +25,12 @@ import tempfile
 from kautham_runs import KAUTHAM, run
 
 
-def follow(problem, tree, sets):
+def follow(problem, tree, seed, sets):
     """One tree's steering: (reached, goal distance in cm, motions, how it stopped)."""
     with tempfile.NamedTemporaryFile(suffix=".json", delete=False) as f:
         out = f.name
-    command = [KAUTHAM, "plan", problem, "--planner", "goal-steering", "--set", f"tree={tree}",
-               "-o", out]
+    command = [KAUTHAM, "plan", problem, "--planner", "goal-steering", "--seed", str(seed),
+               "--set", f"tree={tree}", "-o", out]
     for s in sets:
         command += ["--set", s]
     result = run(command)
@@ -65,14 +66,18 @@ def main():
     parser.add_argument("problem", help="a problem file")
     parser.add_argument("--trees", type=int, default=50, help="trees 0 to N-1 (default 50)")
     parser.add_argument("--first", type=int, default=0, help="the first tree (default 0)")
+    parser.add_argument("--seed", type=int, default=1,
+                        help="the search's seed, which draws the trees' angles (default 1, as "
+                        "`kautham plan`'s)")
     parser.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                         help="a p-KPIECE parameter, as `kautham plan --set` (repeatable)")
     args = parser.parse_args()
     if not os.path.isfile(args.problem):
         print(f"steering-trees: {args.problem}: no such file", file=sys.stderr)
         return 2
-    if args.trees < 1 or args.first < 0:
-        print("steering-trees: --trees must be at least 1 and --first at least 0",
+    if args.trees < 1 or args.first < 0 or not 1 <= args.seed <= 4294967295:
+        print("steering-trees: --trees must be at least 1, --first at least 0 and --seed in "
+              "[1, 4294967295]",
               file=sys.stderr)
         return 2
     problem = os.path.abspath(args.problem)
@@ -80,7 +85,7 @@ def main():
     reached = []
     print(f"{'tree':>5}  {'goal':>4}  {'off cm':>6}  {'motions':>7}  stopped")
     for tree in range(args.first, args.first + args.trees):
-        at_goal, off, motions, stop = follow(problem, tree, args.set)
+        at_goal, off, motions, stop = follow(problem, tree, args.seed, args.set)
         print(f"{tree:>5}  {'yes' if at_goal else 'no':>4}  {off:>6.1f}  {motions:>7}  {stop}",
               flush=True)
         if at_goal:

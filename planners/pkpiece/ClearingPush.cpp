@@ -53,8 +53,9 @@ ClearingPush::ClearingPush(const physics::PlanningContext& context, const PushSe
       belowCentre_(settings.belowCentre),
       slide_(settings.crowdedSlide),
       end_(end),
-      angles_({settings.angleSpread, settings.angleAfter, settings.angleGeneration},
-              context.layout().bodies.size()) {
+      angles_(
+          {settings.angleSpread, settings.angleAfter, settings.angleGeneration, settings.angleSeed},
+          context.layout().bodies.size()) {
   const double pitch = settings.pitch;
   const physics::WorldLayout& layout = context.layout();
   for (std::size_t b = 0; b < layout.bodies.size(); ++b) {

@@ -16,6 +16,7 @@
 #include <ompl/control/PathControl.h>
 #include <ompl/control/SpaceInformation.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include "kautham/physics/WorldStateSpace.h"
 #include "kautham/planners/FailureReporter.h"
@@ -69,8 +70,9 @@ class GoalSteeringPlanner : public ompl::base::Planner, public FailureReporter {
         context_(context),
         settings_(chosen.pkpiece),
         evaluator_(context, settings_.displacement),  // only particles judge the displacement
-        steering_(context, evaluator_, settings_.clearingPush, pushSettingsOf(settings_),
-                  settings_.kinematicSteering, approachSettingsOf(settings_)) {
+        steering_(context, evaluator_, settings_.clearingPush,
+                  pushSettingsOf(settings_, ompl::RNG::getSeed()), settings_.kinematicSteering,
+                  approachSettingsOf(settings_)) {
     // A learned tree's angles come from the trees p-KPIECE grew before it, which are not here.
     if (const std::uint64_t before = steering_.pushAngles().treesBefore(chosen.tree))
       throw std::invalid_argument(

@@ -11,6 +11,7 @@
 #include <ompl/control/PathControl.h>
 #include <ompl/control/spaces/RealVectorControlSpace.h>
 #include <ompl/datastructures/PDF.h>
+#include <ompl/util/RandomNumbers.h>
 
 #include "PKpieceMotion.h"
 #include "kautham/physics/WorldStateSpace.h"
@@ -70,8 +71,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
                   << 20),
       grid_(context.projection().getDimension()),
       robotPart_(std::make_shared<const RobotSpread::Part>(context.layout())),
-      steering_(context, evaluator_, settings.clearingPush, pushSettingsOf(settings),
-                settings.kinematicSteering, approachSettingsOf(settings)),
+      steering_(context, evaluator_, settings.clearingPush,
+                pushSettingsOf(settings, ompl::RNG::getSeed()), settings.kinematicSteering,
+                approachSettingsOf(settings)),
       // Verification streams: a function of the seed, apart from the particles' (and from
       // `kautham validate`'s, whose seeds are small numbers).
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL),

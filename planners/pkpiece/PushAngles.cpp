@@ -21,10 +21,11 @@ constexpr std::size_t kMinElite = 3;
 // angles a little off the best ones: a can's push of 0.05 rad more or less changes little.
 constexpr double kMinSd = 0.05;
 
-// The key of `tree`'s draw for `body`: the same object is pushed at the same angle all through a
-// tree, whatever state the push is steered from.
-std::uint64_t keyOf(std::uint64_t tree, std::size_t body) {
-  return core::mix64(tree * 0x9E3779B97F4A7C15ULL ^ (body + 1) * 0xBF58476D1CE4E5B9ULL);
+// The key of `tree`'s draw for `body` under `seed`: the same object is pushed at the same angle
+// all through a tree, whatever state the push is steered from.
+std::uint64_t keyOf(std::uint64_t seed, std::uint64_t tree, std::size_t body) {
+  return core::mix64(core::mix64(seed) ^ tree * 0x9E3779B97F4A7C15ULL ^
+                     (body + 1) * 0xBF58476D1CE4E5B9ULL);
 }
 }  // namespace
 
@@ -60,7 +61,7 @@ double PushAngles::angle(std::size_t body) const { return current_.at(body); }
 
 double PushAngles::angleOf(std::uint64_t tree, std::size_t body) const {
   if (tree < settings_.after || settings_.spread <= 0.0) return 0.0;
-  const std::uint64_t key = keyOf(tree, body);
+  const std::uint64_t key = keyOf(settings_.seed, tree, body);
   const std::uint64_t generation = generationOf(tree);
   if (generation == 0) {
     const double unit = static_cast<double>(key >> 11) * 0x1.0p-53;  // in [0, 1)

@@ -40,10 +40,25 @@ TEST(PushAnglesTest, TreesBeforeTheFirstTurnedOnePushStraightAndTheRestWithinThe
   }
   EXPECT_LT(lowest, -0.4);  // both ways, and far
   EXPECT_GT(highest, 0.4);
-  // A tree's angle depends on the tree and the object alone.
+  // A tree's angle depends on the seed, the tree and the object alone.
   PushAngles again({0.8, 3, 0}, kBodies);
   EXPECT_EQ(anglesOf(again, 40, kCan), can);
   EXPECT_NE(anglesOf(again, 40, kCan + 1), can);
+}
+
+TEST(PushAnglesTest, AnotherSeedDrawsOtherAnglesForTheSameTree) {
+  // Runs with other seeds must sample other angles: with one sequence for every seed, a benchmark
+  // over seeds would measure that sequence's luck (benchmarks.md, session 63).
+  PushAngles one({0.8, 1, 0, 1}, kBodies);
+  PushAngles two({0.8, 1, 0, 2}, kBodies);
+  PushAngles oneAgain({0.8, 1, 0, 1}, kBodies);
+  const std::vector<double> can = anglesOf(one, 30, kCan);
+  EXPECT_EQ(anglesOf(oneAgain, 30, kCan), can);
+  const std::vector<double> other = anglesOf(two, 30, kCan);
+  EXPECT_EQ(other[0], 0.0);  // the first tree pushes straight under any seed
+  int differ = 0;
+  for (std::uint64_t t = 1; t < 30; ++t) differ += other[t] != can[t];
+  EXPECT_EQ(differ, 29);
 }
 
 TEST(PushAnglesTest, TheFirstGenerationDrawsAsTreesWithoutLearning) {

@@ -57,6 +57,8 @@ struct PushSettings {
   /// With an angle spread, the trees per generation whose angles are learned from the trees
   /// before (PushAngles); 0: every tree draws its angles afresh.
   std::uint64_t angleGeneration = 0;
+  /// With an angle spread, the search's seed: the same tree pushes at other angles under another.
+  std::uint64_t angleSeed = 0;
 };
 
 /// Where p-KPIECE steers while an object fills the goal's free space (ours, not in the

@@ -26,11 +26,20 @@ struct ApproachSettings {
   double moveSpeed = 0.3;
 };
 
-/// The clearing push as p-KPIECE's parameters set it.
-inline PushSettings pushSettingsOf(const PKpieceSettings& s) {
-  return {s.pushPitch,      s.clearBehind,        s.corridorPitch, s.pushBelowCentre,
-          s.pushSpeed,      s.crowdedPitch,       s.crowdedSlide,  s.pushAngleSpread,
-          s.pushAngleAfter, s.pushAngleGeneration};
+/// The clearing push as p-KPIECE's parameters set it, for a search with `seed` (OMPL's: what
+/// `kautham plan --seed` sets), which draws the trees' push angles.
+inline PushSettings pushSettingsOf(const PKpieceSettings& s, std::uint64_t seed) {
+  return {s.pushPitch,
+          s.clearBehind,
+          s.corridorPitch,
+          s.pushBelowCentre,
+          s.pushSpeed,
+          s.crowdedPitch,
+          s.crowdedSlide,
+          s.pushAngleSpread,
+          s.pushAngleAfter,
+          s.pushAngleGeneration,
+          seed};
 }
 /// The approach as p-KPIECE's parameters set it.
 inline ApproachSettings approachSettingsOf(const PKpieceSettings& s) {

@@ -12,7 +12,9 @@ namespace kautham::planners {
 ///
 /// Trees numbered below `after` push straight across. From `after` on, a tree pushes each
 /// object at an angle of its own, fixed for the whole tree: drawn uniformly within `spread` of
-/// straight from a hash of the tree and the object, so it depends on nothing else.
+/// straight from a hash of the search's seed, the tree and the object, so it depends on nothing
+/// else (not on how many trees grow at once). The seed is in the hash so that runs with other
+/// seeds draw other angles: a benchmark over seeds samples the angles, not one lucky sequence.
 ///
 /// With `generation` > 0 the angles are learned instead of drawn afresh. The trees from `after`
 /// on come in generations of `generation` trees. The first draws uniformly, as above. Each
@@ -32,6 +34,7 @@ class PushAngles {
     double spread = 0.0;           ///< rad a push may turn either way (0: every push straight)
     std::uint64_t after = 1;       ///< the first tree whose pushes turn
     std::uint64_t generation = 0;  ///< trees per generation (0: every tree draws afresh)
+    std::uint64_t seed = 0;        ///< the search's seed: another seed, other angles
   };
 
   /// `bodies`: how many bodies the world has (angles are asked by body index).
