@@ -448,12 +448,15 @@ FAILURE_KINDS = [("goal_missed", "goal missed"), ("object_fell_or_tipped", "obje
 
 def plans_folders(inputs):
     """The plans/ folders of `kautham bench` output folders among the inputs, and of their
-    shards (a Slurm campaign's OUT/shard-I), the folder's own first."""
+    shards (a Slurm campaign's OUT/shard-I), the folder's own first; each with its bench's label:
+    the output folder's name when several benches are read (their runs are numbered alike, and
+    must not be taken for one another), else ""."""
+    benches = [p for p in inputs if os.path.isdir(p)]
     folders = []
-    for p in inputs:
-        if os.path.isdir(p):
-            folders += [f for f in [os.path.join(p, "plans")] if os.path.isdir(f)]
-            folders += sorted(glob.glob(os.path.join(p, "shard-*", "plans")))
+    for p in benches:
+        label = os.path.basename(os.path.normpath(p)) if len(benches) > 1 else ""
+        folders += [(label, f) for f in [os.path.join(p, "plans")] if os.path.isdir(f)]
+        folders += [(label, f) for f in sorted(glob.glob(os.path.join(p, "shard-*", "plans")))]
     return folders
 
 
@@ -474,12 +477,15 @@ def read_failures(folders):
     """Why the executions failed, per problem and configuration, from the validation reports
     `kautham bench` writes beside its plans (OUT/plans/PROBLEM/CONFIG/run-R.validation.json)."""
     groups = {}
-    seen = set()  # a run found in two folders counts once, from the first (as bench's merge)
-    for folder in folders:
+    # A run found in two folders of one bench (its shards) counts once, from the first (as
+    # bench's merge); two benches' runs are told apart by their labels.
+    seen = set()
+    for label, folder in folders:
         pattern = os.path.join(folder, "*", "*", "run-*.validation.json")
         for path in sorted(glob.glob(pattern)):
             config_dir = os.path.dirname(path)
-            key = (os.path.basename(os.path.dirname(config_dir)), os.path.basename(config_dir))
+            problem = os.path.basename(os.path.dirname(config_dir))
+            key = (f"{label}/{problem}" if label else problem, os.path.basename(config_dir))
             if (key, os.path.basename(path)) in seen:
                 continue
             seen.add((key, os.path.basename(path)))

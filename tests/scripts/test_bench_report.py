@@ -271,6 +271,27 @@ class FromBenchFolder(unittest.TestCase):
         self.assertEqual((failures["plans"], failures["executions"], failures["successes"]),
                          (3, 30, 24))
 
+    def test_two_benches_runs_numbered_alike_are_both_counted(self):
+        # A second bench (other seeds) numbers its runs from 0 too: its plans are its own, under
+        # its folder's name, as the table's cells are, not taken for the first bench's.
+        other = os.path.join(self.tmp.name, "other")
+        os.makedirs(os.path.join(other, "logs"))
+        with open(os.path.join(DATA, "kuka_clutter_10.log")) as src, \
+                open(os.path.join(other, "logs", "kuka_clutter_10.log"), "w") as dst:
+            dst.write(src.read())
+        plans = os.path.join(other, "plans", "kuka_clutter_10", "pKPU")
+        os.makedirs(plans)
+        with open(os.path.join(plans, "run-0.validation.json"), "w") as f:
+            json.dump(validation(10, 10, {}, 0, {}, 0, []), f)
+        result = report(self.bench, other, "-o", os.path.join(self.tmp.name, "r"),
+                        "--no-figures")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(os.path.join(self.tmp.name, "r", "summary.json")) as f:
+            failures = json.load(f)["failures"]
+        counts = {(g["problem"], g["plans"], g["successes"]) for g in failures}
+        self.assertEqual(counts, {("out/kuka_clutter_10", 2, 14),
+                                  ("other/kuka_clutter_10", 1, 10)})
+
     def test_logs_alone_write_no_failures_table(self):
         result = report(os.path.join(self.bench, "logs"), "-o", os.path.join(self.tmp.name, "r"),
                         "--no-figures")
