@@ -6,9 +6,9 @@ of its own (docs/planners.md). This follows the steering of trees 0 to N-1 alone
 search (`kautham plan FILE --planner goal-steering --set tree=K`), and prints one line per tree:
 whether it reached the goal, how far from the goal it ended, after how many motions, and the
 rule it broke (by which object) or why else it stopped. Then the trees that reached the goal,
-and the distinct ends, most frequent first. The angles depend on the seed, the tree's number and the
-object only: under the same `--seed` a tree whose steering alone reaches the goal does so in
-every run, and p-KPIECE's search with that seed grows that tree with those pushes.
+and the distinct ends, most frequent first. The angles depend on the seed, the tree's number
+and the object only: under the same `--seed` a tree whose steering alone reaches the goal does
+so in every run, and p-KPIECE's search with that seed grows that tree with those pushes.
 
 Usage: python3 scripts/steering-trees.py problems/yumi_clutter_35.xml --trees 100 \\
            --seed 1 --set push_angle_spread=0.8
@@ -77,8 +77,7 @@ def main():
         return 2
     if args.trees < 1 or args.first < 0 or not 1 <= args.seed <= 4294967295:
         print("steering-trees: --trees must be at least 1, --first at least 0 and --seed in "
-              "[1, 4294967295]",
-              file=sys.stderr)
+              "[1, 4294967295]", file=sys.stderr)
         return 2
     problem = os.path.abspath(args.problem)
     ends = collections.Counter()
