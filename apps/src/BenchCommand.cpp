@@ -17,6 +17,7 @@
 #include "BenchSpec.h"
 #include "Commands.h"
 #include "OmplBenchmarkLog.h"
+#include "OutputFile.h"
 #include "SeedOption.h"
 #include "kautham/core/InputError.h"
 #include "kautham/planners/PluginLoader.h"
@@ -186,6 +187,7 @@ int runBench(const CLI::App& command, BenchOptions options) {
   options.spec.problems = options.inputs;
   const BenchSpec spec = makeBenchSpec(options.spec);
   const Shard shard = parseShard(options.shard);
+  requireOutputFolder(options.output, "-o");
   const Preflight checked = preflight(spec);  // bad input stops here, before any run
   // Results of another setup in OUT stop it here too, before any run.
   const RunsInOutput runs = runsInOutput(spec, checked, options.output, shard);
@@ -247,6 +249,7 @@ void addSpecOptions(CLI::App& command, BenchOptions& options) {
   command.add_option("--validate", s.validate,
                      "execute each solved plan this many times under uncertainty (default 0)");
   command.add_option("--model-dir", s.modelDirs, "extra folder to search for models")
+      ->check(CLI::ExistingDirectory)
       ->allow_extra_args(false);
 }
 

@@ -42,17 +42,17 @@ class BenchFileReader {
     if (root.contains("description")) spec.description = text(root["description"], "description");
     if (root.contains("problems")) spec.problems = problems(root["problems"]);
     if (root.contains("configs")) spec.configs = configs(root["configs"]);
-    if (root.contains("runs")) spec.runs = whole(root["runs"], "runs");
+    if (root.contains("runs")) spec.runs = whole(root["runs"], "runs", 1);
     if (root.contains("seed"))
-      spec.seed = static_cast<std::uint32_t>(
-          whole(root["seed"], "seed", std::numeric_limits<std::uint32_t>::max()));
+      spec.seed = static_cast<std::uint32_t>(whole(root["seed"], "seed", 1));
     if (root.contains("time")) {
-      if (!root["time"].is_number()) fail("time", "\"time\" must be a number of seconds");
+      if (!root["time"].is_number() || !(root["time"].get<double>() > 0.0))
+        fail("time", "\"time\" must be a positive number of seconds");
       spec.time = root["time"].get<double>();
     }
     if (root.contains("threads"))
-      spec.threads = static_cast<unsigned>(whole(root["threads"], "threads", 4096));
-    if (root.contains("validate")) spec.validate = whole(root["validate"], "validate");
+      spec.threads = static_cast<unsigned>(whole(root["threads"], "threads", 1, 4096));
+    if (root.contains("validate")) spec.validate = whole(root["validate"], "validate", 0);
     return spec;
   }
 
@@ -105,10 +105,11 @@ class BenchFileReader {
     return value.get<std::string>();
   }
 
-  std::size_t whole(const json& value, const std::string& key,
+  std::size_t whole(const json& value, const std::string& key, std::uint64_t smallest,
                     std::uint64_t largest = std::numeric_limits<std::uint32_t>::max()) {
-    if (!value.is_number_unsigned() || value.get<std::uint64_t>() > largest)
-      fail(key, fmt::format("\"{}\" must be a whole number from 0 to {}", key, largest));
+    if (!value.is_number_unsigned() || value.get<std::uint64_t>() < smallest ||
+        value.get<std::uint64_t>() > largest)
+      fail(key, fmt::format("\"{}\" must be a whole number from {} to {}", key, smallest, largest));
     return static_cast<std::size_t>(value.get<std::uint64_t>());
   }
 

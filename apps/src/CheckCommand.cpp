@@ -310,6 +310,7 @@ void addCheckCommand(CLI::App& app, int& exitCode) {
       app.add_subcommand("check", "Load and validate a problem file and summarise it");
   command->add_option("problem", options->problem, "problem file (XML)")->required();
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->check(CLI::ExistingDirectory)
       ->allow_extra_args(false);
   command->add_option("--planner", options->planner,
                       "check with this planner instead of the file's (see `kautham planners`)");

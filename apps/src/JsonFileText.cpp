@@ -1,6 +1,7 @@
 #include "JsonFileText.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -9,6 +10,9 @@
 namespace kautham::apps {
 
 nlohmann::json JsonFileText::parse(const std::string& kind, const std::string& notJson) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(file_, ignored))
+    throw core::InputError({file_, 0}, "a folder, not a file: name " + kind + " itself");
   std::ifstream in(file_, std::ios::binary);
   if (!in) throw core::InputError({file_, 0}, "cannot open " + kind);
   std::ostringstream buffer;

@@ -17,7 +17,37 @@ bool isUnderSystemFolder(const fs::path& path) {
   if (++first == path.end()) return false;
   return *first == "dev" || *first == "proc";
 }
+
+/// Refuses (through `refuse`) when the nearest folder on `path`'s way that exists is not one:
+/// the rest are created.
+template <typename Refuse>
+void requireFolderOnTheWay(const fs::path& path, const Refuse& refuse) {
+  std::error_code ignored;
+  for (fs::path folder = path.parent_path(); !folder.empty(); folder = folder.parent_path()) {
+    const fs::file_status s = fs::status(folder, ignored);
+    if (fs::exists(s)) {
+      if (!fs::is_directory(s)) refuse("'" + folder.string() + "' is not a folder");
+      return;
+    }
+    if (folder == folder.parent_path()) return;
+  }
+}
 }  // namespace
+
+void requireOutputFolder(const fs::path& folder, const std::string& option) {
+  const auto refuse = [&](const std::string& why) {
+    throw std::invalid_argument(option + " " + folder.string() + ": " + why);
+  };
+  if (folder.empty()) refuse("give the name of a folder to write the results in");
+  std::error_code ignored;
+  if (isUnderSystemFolder(fs::absolute(folder, ignored)) ||
+      isUnderSystemFolder(fs::weakly_canonical(folder, ignored)))
+    refuse("lies among the system's devices (/dev, /proc); give the name of a folder");
+  const fs::file_status status = fs::status(folder, ignored);  // through symbolic links
+  if (fs::exists(status) && !fs::is_directory(status))
+    refuse("is a file, not a folder; give the name of a folder to write the results in");
+  requireFolderOnTheWay(folder, refuse);
+}
 
 void requireOutputFile(const fs::path& file, const std::string& option) {
   const auto refuse = [&](const std::string& why) {
@@ -38,15 +68,7 @@ void requireOutputFile(const fs::path& file, const std::string& option) {
           "is not a regular file (a device, a pipe or a link to nothing) and writing would "
           "replace it; give the name of a file");
   }
-  // The nearest folder on the path that exists must be one: the rest are created.
-  for (fs::path folder = file.parent_path(); !folder.empty(); folder = folder.parent_path()) {
-    const fs::file_status s = fs::status(folder, ignored);
-    if (fs::exists(s)) {
-      if (!fs::is_directory(s)) refuse("'" + folder.string() + "' is not a folder");
-      return;
-    }
-    if (folder == folder.parent_path()) return;
-  }
+  requireFolderOnTheWay(file, refuse);
 }
 
 void writeTextFile(const fs::path& given, const std::string& text) {

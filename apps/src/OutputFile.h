@@ -13,6 +13,11 @@ namespace kautham::apps {
 /// so that a mistyped -o does not cost the planning time.
 void requireOutputFile(const std::filesystem::path& file, const std::string& option);
 
+/// Throws std::invalid_argument (exit 2), naming `option` and `folder`, when `folder` cannot be
+/// an output folder: it is a file, or lies among the system's devices, or something on its way
+/// is a file. `kautham bench` calls it before any run.
+void requireOutputFolder(const std::filesystem::path& folder, const std::string& option);
+
 /// Writes `text` to `file` (its folders created) through a temporary file beside it, renamed
 /// over it once complete: a reader never sees half a file, an old file stays whole when writing
 /// fails, and the temporary is removed then.

@@ -257,6 +257,7 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                       "three.js folder for --html (default: " + kDefaultThreeDir.string() +
                           ", from Debian's libjs-three)");
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->check(CLI::ExistingDirectory)
       ->allow_extra_args(false);
   addPackagePathOption(*command, options->packagePaths);
   command->add_option("--query", options->query, "index of the query to plan")

@@ -706,6 +706,7 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
                    "plan file records (repeatable): the plan executed in other physics")
       ->allow_extra_args(false);
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->check(CLI::ExistingDirectory)
       ->allow_extra_args(false);
   command
       ->add_option("--only", options->only,

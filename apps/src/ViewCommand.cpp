@@ -64,7 +64,16 @@ bool isProblemFile(const std::string& file) {
 void writeTree(const nlohmann::json& plan, const ViewOptions& options) {
   if (!plan.contains("tree") || !plan.contains("goal"))
     throw ViewError(options.plan + ": this plan file has no search tree; plan it again");
-  writeTextFile(options.tree, treeToSvg(plan));
+  std::string svg;
+  try {
+    svg = treeToSvg(plan);
+  } catch (const nlohmann::json::exception& e) {
+    // The page checks each field it reads; the picture reads the tree's and the goal's as
+    // `kautham plan` writes them, so a file edited or cut short is refused here as a whole.
+    throw ViewError(options.plan + ": the plan's \"tree\" or \"goal\" is not as `kautham plan` " +
+                    "writes it (" + e.what() + "); plan it again");
+  }
+  writeTextFile(options.tree, svg);
   fmt::print("wrote     {}\n", options.tree);
 }
 
@@ -99,6 +108,7 @@ void addViewCommand(CLI::App& app, int& exitCode) {
                    "plan file (JSON, from `kautham plan -o`), or a problem file (.xml): its start")
       ->required();
   command->add_option("--model-dir", options->modelDirs, "extra folder to search for models")
+      ->check(CLI::ExistingDirectory)
       ->allow_extra_args(false);
   addPackagePathOption(*command, options->packagePaths);
   command->add_option("--query", options->query, "the query whose start a problem file shows")

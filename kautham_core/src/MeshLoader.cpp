@@ -4,6 +4,8 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include <string>
+
 #include "InventorMesh.h"
 
 namespace kautham::core {
@@ -43,11 +45,31 @@ TriangleMesh mirrorAware(TriangleMesh mesh, const Eigen::Vector3d& scale) {
   return mesh;
 }
 
+/// Throws MeshError naming the first vertex that is not a finite number, or lies absurdly far
+/// (more than kFarthest from the link's origin, scaled): the hull and the physics would take it
+/// as a point, and the error would blame the shape ("flat", "too few points") instead.
+void requireFiniteVertices(const TriangleMesh& mesh) {
+  constexpr double kFarthest = 1000.0;  // m
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    const Eigen::Vector3d& p = mesh.vertices[v];
+    if (p.allFinite() && p.cwiseAbs().maxCoeff() <= kFarthest) continue;
+    throw MeshError(
+        "vertex " + std::to_string(v) + " (" + std::to_string(p.x()) + ", " +
+        std::to_string(p.y()) + ", " + std::to_string(p.z()) + ", scaled) " +
+        (p.allFinite() ? "lies more than 1 km from the origin" : "is not a finite number") +
+        ": the file is damaged, or its units are not metres (set the mesh's scale)");
+  }
+}
+
 }  // namespace
 
 TriangleMesh loadMesh(const std::filesystem::path& file, const Eigen::Vector3d& scale) {
   // Assimp reads no Open Inventor and only VRML 1 badly: those go to Coin3D.
-  if (isInventorFile(file)) return mirrorAware(loadInventorMesh(file, scale), scale);
+  if (isInventorFile(file)) {
+    TriangleMesh mesh = loadInventorMesh(file, scale);
+    requireFiniteVertices(mesh);
+    return mirrorAware(std::move(mesh), scale);
+  }
   Assimp::Importer importer;
   // URDF meshes are in the link's frame as written: keep COLLADA's z-up data as it is.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
@@ -64,6 +86,7 @@ TriangleMesh loadMesh(const std::filesystem::path& file, const Eigen::Vector3d& 
   TriangleMesh mesh;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), scale, mesh);
   if (mesh.triangles.empty()) throw MeshError("the mesh holds no triangles");
+  requireFiniteVertices(mesh);
   return mirrorAware(std::move(mesh), scale);
 }
 

@@ -80,12 +80,24 @@ std::string attributeNames() {
   return names;
 }
 
+// The bounds physicsSettingsError() holds a simulation to (see there why).
+constexpr double kSmallestStep = 1e-4;      // s
+constexpr double kLargestGravity = 1000.0;  // m/s^2
+
 }  // namespace
 
 std::optional<std::string> physicsSettingsError(const PhysicsSettings& p) {
   if (!(p.stepSize > 0.0)) return "attribute stepSize must be positive";
   if (p.stepSize > 0.1) return "stepSize must be at most 0.1 s for a stable simulation";
+  // Every world settles its start for a simulated second before planning: at 1e-9 s that is a
+  // billion steps, and the run hangs before the time limit is ever looked at.
+  if (p.stepSize < kSmallestStep)
+    return "stepSize must be at least 0.0001 s (a simulated second would take over 10 000 "
+           "steps; the shipped problems use 0.01)";
   if (!p.gravity.allFinite()) return "gravity must be three finite numbers";
+  // ODE aborts the process on the velocities a gravity of 1e300 m/s^2 gives in one step.
+  if (p.gravity.norm() > kLargestGravity)
+    return "gravity must be at most 1000 m/s^2 in magnitude (the Earth's is 9.81)";
   if (p.maxContacts < 1 || p.maxContacts > 64) return "maxContacts must be in [1, 64]";
   if (p.solverIterations < 1 || p.solverIterations > 1000)
     return "solverIterations must be in [1, 1000]";

@@ -156,7 +156,29 @@ class UrdfConverter {
                                               std::to_string(written) + kCollisionNeeds);
   }
 
+  /// The link's <mass value> and <inertia> attributes, as written, are finite numbers: depending
+  /// on how it is called, urdfdom keeps an infinite inertia (which ODE integrates into nonsense)
+  /// or drops the whole <inertial> and reports the link's collisions as what it could not read.
+  void requireFiniteInertial(const std::string& link, const tinyxml2::XMLElement& element) const {
+    const tinyxml2::XMLElement* inertial = element.FirstChildElement("inertial");
+    if (!inertial) return;
+    const auto check = [&](const tinyxml2::XMLElement* e, const char* attribute) {
+      double value = 0.0;
+      if (e && e->QueryDoubleAttribute(attribute, &value) == tinyxml2::XML_SUCCESS &&
+          !std::isfinite(value))
+        throw InputError({xml_.file(), e->GetLineNum()},
+                         "link '" + link + "': <" + e->Name() + "> " + attribute + "=\"" +
+                             e->Attribute(attribute) + "\" must be a finite number");
+    };
+    check(inertial->FirstChildElement("mass"), "value");
+    for (const char* attribute : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"})
+      check(inertial->FirstChildElement("inertia"), attribute);
+  }
+
   Link convertLink(const urdf::Link& source, const tinyxml2::XMLElement& element) {
+    // Before urdfdom's own account: it drops an inertial it cannot read, and what it then says
+    // it dropped is the link's collisions.
+    requireFiniteInertial(source.name, element);
     checkNothingDropped(source, element);
     Link link;
     link.name = source.name;

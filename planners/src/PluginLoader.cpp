@@ -1,10 +1,16 @@
 #include "kautham/planners/PluginLoader.h"
 
 #include <dlfcn.h>
+#include <elf.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <exception>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -36,6 +42,46 @@ fs::path absolutePath(const fs::path& file) {
   std::error_code error;
   const fs::path canonical = fs::weakly_canonical(fs::absolute(file), error);
   return error ? fs::absolute(file) : canonical;
+}
+
+/// Whether the ELF file `bytes` (the whole file) holds every byte its headers say it has, for
+/// one ELF class (Header, Segment: Elf64_Ehdr and Elf64_Phdr, or the 32-bit ones).
+template <typename Header, typename Segment>
+bool elfComplete(const std::string& bytes) {
+  const auto within = [&](std::uint64_t offset, std::uint64_t length) {
+    return offset <= bytes.size() && length <= bytes.size() - offset;
+  };
+  if (bytes.size() < sizeof(Header)) return false;
+  Header header;
+  std::memcpy(&header, bytes.data(), sizeof header);
+  if (header.e_shoff != 0 &&
+      !within(header.e_shoff, std::uint64_t{header.e_shnum} * header.e_shentsize))
+    return false;
+  if (header.e_phentsize != sizeof(Segment) ||
+      !within(header.e_phoff, std::uint64_t{header.e_phnum} * sizeof(Segment)))
+    return false;
+  for (std::size_t i = 0; i < header.e_phnum; ++i) {
+    Segment segment;
+    std::memcpy(&segment, bytes.data() + header.e_phoff + i * sizeof(Segment), sizeof segment);
+    if (segment.p_type == PT_LOAD && !within(segment.p_offset, segment.p_filesz)) return false;
+  }
+  return true;
+}
+
+/// Why a file that starts as an ELF file cannot be a whole one (cut short, as by a copy
+/// interrupted), if it cannot: dlopen maps the segments its headers name, and touching a page
+/// past the file's end kills the process with SIGBUS instead of returning an error.
+std::optional<std::string> truncatedElf(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (bytes.size() < EI_NIDENT || std::memcmp(bytes.data(), ELFMAG, SELFMAG) != 0)
+    return std::nullopt;  // not ELF at all: dlopen says so itself
+  const bool complete = bytes[EI_CLASS] == ELFCLASS64   ? elfComplete<Elf64_Ehdr, Elf64_Phdr>(bytes)
+                        : bytes[EI_CLASS] == ELFCLASS32 ? elfComplete<Elf32_Ehdr, Elf32_Phdr>(bytes)
+                                                        : true;
+  if (complete) return std::nullopt;
+  return "not a loadable shared library: the file is cut short (" + std::to_string(bytes.size()) +
+         " bytes, fewer than its ELF headers name); copy or build it again";
 }
 
 /// Runs the plugin's registration into a registry of its own; returns the plugin's version.
@@ -79,6 +125,7 @@ void loadPlannerPlugin(const fs::path& given, PlannerRegistry& registry) {
   // The library stays loaded to the end of the program: its planners' code is in it. A failed
   // plugin is not closed either (what it registered into the staging registry is destroyed
   // first, and the program ends soon after).
+  if (const std::optional<std::string> why = truncatedElf(file)) fail(file, *why);
   dlerror();
   void* library = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library == nullptr) {

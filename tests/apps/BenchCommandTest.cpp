@@ -12,7 +12,10 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -334,6 +337,26 @@ TEST_F(BenchCommandTest, CheckLoadsEverythingAndRunsNothing) {
   EXPECT_FALSE(fs::exists(folder / "out"));
 }
 
+TEST_F(BenchCommandTest, AnOutputFolderThatIsAFileExitsTwoBeforeAnyRun) {
+  // It failed after the banner with a raw filesystem error (exit 1), and --check passed it.
+  const fs::path file = folder / "spec.json";
+  test::writeFile(file, "{\"name\": \"f\", \"problems\": [\"" +
+                            (fs::path(KAUTHAM_SOURCE_DIR) / "problems/pusher_free.xml").string() +
+                            "\"],\n \"configs\": [{\"planner\": \"KPIECE\"}], \"runs\": 1, "
+                            "\"time\": 1}\n");
+  const fs::path aFile = folder / "afile";
+  test::writeFile(aFile, "not a folder\n");
+  for (const std::string check : {"", "--check "})
+    for (const fs::path& output : {aFile, aFile / "sub"}) {
+      const CommandRun run =
+          kautham("bench " + check + "--file '" + file.string() + "' -o '" + output.string() + "'");
+      EXPECT_EQ(run.exitCode, 2) << run.output;
+      EXPECT_NE(run.output.find("-o " + output.string() + ": "), std::string::npos) << run.output;
+      EXPECT_EQ(run.output.find("planning"), std::string::npos) << run.output;  // no run started
+    }
+  EXPECT_EQ(test::readFile(aFile), "not a folder\n");  // left as it was
+}
+
 TEST_F(BenchCommandTest, CheckSeesWhatTheOutputFolderAlreadyHolds) {
   // A run made, then checked again: resumed, nothing left; checked with another time limit, its
   // result belongs to another setup, which the campaign would refuse: so does --check.
@@ -391,6 +414,18 @@ TEST_F(BenchCommandTest, BadInputExitsTwoBeforeAnyRun) {
   EXPECT_EQ(typo.exitCode, 2);
   EXPECT_NE(typo.output.find(file.string() + ":3: unknown key \"run\""), std::string::npos)
       << typo.output;
+  // A value out of range is the file's, at its line: not an option the user never gave.
+  for (const auto& [entry, message] : std::vector<std::pair<std::string, std::string>>{
+           {"\"runs\": 0", "\"runs\" must be a whole number from 1 to 4294967295"},
+           {"\"seed\": 0", "\"seed\" must be a whole number from 1 to 4294967295"},
+           {"\"threads\": 0", "\"threads\" must be a whole number from 1 to 4096"},
+           {"\"time\": -2", "\"time\" must be a positive number of seconds"}}) {
+    test::writeFile(file, "{\n  \"problems\": [\"p.xml\"],\n  " + entry + "\n}\n");
+    const CommandRun range = kautham("bench --file '" + file.string() + "' " + out());
+    EXPECT_EQ(range.exitCode, 2) << range.output;
+    EXPECT_NE(range.output.find(file.string() + ":3: " + message), std::string::npos)
+        << range.output;
+  }
 }
 
 TEST_F(BenchCommandTest, FileNamesProblemsRelativeToItself) {

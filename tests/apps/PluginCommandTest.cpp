@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -141,6 +142,17 @@ TEST_F(PluginCommandTest, FileThatIsNotALibrary) {
   test::writeFile(file, "these are not the bytes of a shared library\n");
   expectRejected(file, "not a loadable shared library");
   expectRejected(folder / "libmissing.so", "no such file");
+}
+
+TEST_F(PluginCommandTest, LibraryCutShort) {
+  // dlopen maps the segments the headers name: past the end of a truncated copy the process
+  // died of SIGBUS, printing nothing.
+  std::ifstream in(kGreedy, std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_GT(bytes.size(), 5000u);
+  const fs::path file = folder / "libtruncated.so";
+  test::writeFile(file, bytes.substr(0, 5000));
+  expectRejected(file, "not a loadable shared library: the file is cut short (5000 bytes");
 }
 
 TEST_F(PluginCommandTest, LibraryWithoutTheRegistrationFunction) {

@@ -281,6 +281,14 @@ TEST_F(ValidateCommandTest, MalformedPlanFilesExitTwoNamingFileAndLine) {
   EXPECT_EQ(size.exitCode, 2) << size.output;
   EXPECT_NE(size.output.find("controls[0] has 4 values, but the robot"), std::string::npos)
       << size.output;
+
+  // A folder where the plan file should be: said so, not "unexpected end of input".
+  const CommandRun aFolder =
+      kautham("validate problems/pusher_cans_5.xml " + quoted(folder) + " --runs 2");
+  EXPECT_EQ(aFolder.exitCode, 2) << aFolder.output;
+  EXPECT_NE(aFolder.output.find(folder.string() + ": a folder, not a file: name the plan file"),
+            std::string::npos)
+      << aFolder.output;
 }
 
 TEST_F(ValidateCommandTest, AbsurdControlValuesOrDurationsAreRefusedNamingTheControl) {

@@ -356,6 +356,27 @@ TEST_F(ViewCommandTest, TreePictureOfAPlanWithoutTreeExitsTwo) {
   EXPECT_NE(view.output.find("no search tree"), std::string::npos) << view.output;
 }
 
+TEST_F(ViewCommandTest, TreePictureOfAMalformedTreeOrGoalExitsTwoNamingTheFile) {
+  // The picture read the fields unchecked: a raw json type_error, exit 1, no file named.
+  const fs::path planFile = folder / "plan.json";
+  ASSERT_EQ(
+      kautham("plan problems/pusher_free.xml --seed 1 -o '" + planFile.string() + "'").exitCode, 0);
+  const nlohmann::json plan = nlohmann::json::parse(std::ifstream(planFile));
+  for (const std::string field : {"tree", "goal"}) {
+    nlohmann::json edited = plan;
+    edited[field] = "not an object";
+    writeFile(planFile, edited.dump());
+    const fs::path svgFile = folder / "t.svg";
+    const CommandRun view =
+        kautham("view '" + planFile.string() + "' --tree '" + svgFile.string() + "'");
+    EXPECT_EQ(view.exitCode, 2) << field << ": " << view.output;
+    EXPECT_NE(view.output.find(planFile.string() + ": the plan's \"tree\" or \"goal\""),
+              std::string::npos)
+        << view.output;
+    EXPECT_FALSE(fs::exists(svgFile)) << field;
+  }
+}
+
 TEST_F(ViewCommandTest, MissingPlanOrThreeJsExitsTwo) {
   const CommandRun missing = kautham("view '" + (folder / "none.json").string() + "'");
   EXPECT_EQ(missing.exitCode, 2) << missing.output;

@@ -95,6 +95,28 @@ TEST(MeshLoader, TextIsNotAMesh) {
   EXPECT_THROW(loadMesh(repoFile("tests/data/malformed/meshes/no_faces.obj")), MeshError);
 }
 
+TEST(MeshLoader, AVertexNotFiniteOrAbsurdlyFarIsNamed) {
+  // Such a vertex was taken as a point: the hull then called the mesh "flat" or "too few points".
+  const fs::path folder = fs::temp_directory_path() / ("kautham_nan_" + std::to_string(getpid()));
+  fs::create_directories(folder);
+  const auto message = [&](const std::string& third) {
+    std::ofstream(folder / "t.obj")
+        << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv " << third << "\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n";
+    try {
+      loadMesh(folder / "t.obj");
+    } catch (const MeshError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(message("0 0 1"), "");  // the tetrahedron itself loads
+  EXPECT_NE(message("0 0 nan").find("is not a finite number"), std::string::npos)
+      << message("0 0 nan");
+  EXPECT_NE(message("0 0 1e30").find("lies more than 1 km from the origin"), std::string::npos)
+      << message("0 0 1e30");
+  fs::remove_all(folder);
+}
+
 TEST(ConvexHull, OfTheBottleIsConvexAndHoldsEveryVertex) {
   const TriangleMesh mesh = loadMesh(repoFile("models/objects/meshes/bottle.obj"));
   const ConvexHull hull = convexHull(mesh.vertices);

@@ -505,6 +505,8 @@ const MalformedCase kMalformedCases[] = {
      "the file goes on after </Problem> with '<Problem name=\"second\"/>': a file holds one "
      "<Problem>; remove what follows, or move it inside"},
     {"empty_file", nullptr, 1, "the file is empty"},
+    {"binary_file", nullptr, 1,
+     "not a text file (it holds a NUL byte, at byte 0): expected an XML document"},
     {"wrong_root", nullptr, 3, "expected the root element <Problem>, found <Scene>"},
     {"unknown_element", nullptr, 11, "unexpected element <Obstacles>"},
     {"parameters_unknown_element", nullptr, 21, "unexpected <Paramter> inside <Parameters>"},
