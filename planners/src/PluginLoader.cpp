@@ -122,10 +122,11 @@ void loadPlannerPlugin(const fs::path& given, PlannerRegistry& registry) {
   if (!fs::exists(file)) fail(file, "no such file");
   if (fs::is_directory(file)) fail(file, "a folder, not a library");
 
+  if (const std::optional<std::string> why = truncatedElf(file)) fail(file, *why);
+
   // The library stays loaded to the end of the program: its planners' code is in it. A failed
   // plugin is not closed either (what it registered into the staging registry is destroyed
   // first, and the program ends soon after).
-  if (const std::optional<std::string> why = truncatedElf(file)) fail(file, *why);
   dlerror();
   void* library = ::dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (library == nullptr) {

@@ -1,8 +1,10 @@
 // core::applyPhysicsOverrides: <Physics> attributes set from outside the problem file
 // (`kautham plan --physics`), read and checked as the loader reads and checks the file's.
 
+#include <array>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -73,22 +75,19 @@ TEST(PhysicsOverrides, TheLoaderHoldsTheFileToTheSameRules) {
             "stepSize must be at most 0.1 s for a stable simulation");
 }
 
-TEST(PhysicsOverrides, AStepSoSmallThatSettlingWouldNeverEndIsRefused) {
-  // A simulated second of settling at 1e-9 s was a billion steps: `kautham plan` hung.
+TEST(PhysicsOverrides, ValuesThatWouldHangOrAbortTheSimulationAreRefused) {
+  // A simulated second of settling at 1e-9 s was a billion steps: `kautham plan` hung. ODE
+  // aborted the process (an assertion in dxNormalize4) on a gravity of 1e300 m/s^2.
   const PhysicsSettings physics;
-  EXPECT_EQ(errorOf(physics, "stepSize=1e-9"),
-            "--physics stepSize=1e-9: stepSize must be at least 0.0001 s (a simulated second "
-            "would take over 10 000 steps; the shipped problems use 0.01)");
-  EXPECT_EQ(errorOf(physics, "stepSize=0.0001"), "");
-}
-
-TEST(PhysicsOverrides, AGravityThatWouldAbortTheSimulationIsRefused) {
-  // ODE aborted the process (an assertion in dxNormalize4) on a gravity of 1e300 m/s^2.
-  const PhysicsSettings physics;
-  EXPECT_EQ(errorOf(physics, "gravity=0 0 -1e300"),
-            "--physics gravity=0 0 -1e300: gravity must be at most 1000 m/s^2 in magnitude (the "
-            "Earth's is 9.81)");
-  EXPECT_EQ(errorOf(physics, "gravity=0 0 -1000"), "");
+  for (const auto& [bad, good, why] : std::vector<std::array<std::string, 3>>{
+           {"stepSize=1e-9", "stepSize=0.0001",
+            "stepSize must be at least 0.0001 s (a simulated second would take over 10 000 "
+            "steps; the shipped problems use 0.01)"},
+           {"gravity=0 0 -1e300", "gravity=0 0 -1000",
+            "gravity must be at most 1000 m/s^2 in magnitude (the Earth's is 9.81)"}}) {
+    EXPECT_EQ(errorOf(physics, bad), "--physics " + bad + ": " + why);
+    EXPECT_EQ(errorOf(physics, good), "");
+  }
 }
 
 }  // namespace
