@@ -100,13 +100,14 @@ XmlReader::XmlReader(std::filesystem::path file) : file_(std::move(file)) {
   if (!in) throw InputError({file_, 0}, "cannot read the file (check its permissions)");
   text_.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   // tinyxml2 stops at a NUL byte, and calls what came before it the document: a binary file
-  // would be "empty". No text file holds one.
+  // would be "empty". No UTF-8 text holds one (UTF-16 does, and tinyxml2 does not read it).
   const std::size_t nul = text_.find('\0');
   if (nul != std::string::npos)
     throw InputError(
         {file_, 1 + static_cast<int>(std::count(text_.begin(), text_.begin() + nul, '\n'))},
         "not a text file (it holds a NUL byte, at byte " + std::to_string(nul) +
-            "): expected an XML document");
+            "): expected an XML document in UTF-8 (a UTF-16 file holds NUL bytes too: save it "
+            "as UTF-8)");
   const tinyxml2::XMLError status = document_.Parse(text_.data(), text_.size());
   if (status == tinyxml2::XML_ERROR_EMPTY_DOCUMENT)
     throw InputError({file_, 1}, "the file is empty: expected an XML document");
