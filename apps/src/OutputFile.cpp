@@ -18,6 +18,13 @@ bool isUnderSystemFolder(const fs::path& path) {
   return *first == "dev" || *first == "proc";
 }
 
+/// Whether `path`, as given or through its links, lies under /dev or /proc.
+bool amongSystemDevices(const fs::path& path) {
+  std::error_code ignored;
+  return isUnderSystemFolder(fs::absolute(path, ignored)) ||
+         isUnderSystemFolder(fs::weakly_canonical(path, ignored));
+}
+
 /// Refuses (through `refuse`) when the nearest folder on `path`'s way that exists is not one:
 /// the rest are created.
 template <typename Refuse>
@@ -39,10 +46,9 @@ void requireOutputFolder(const fs::path& folder, const std::string& option) {
     throw std::invalid_argument(option + " " + folder.string() + ": " + why);
   };
   if (folder.empty()) refuse("give the name of a folder to write the results in");
-  std::error_code ignored;
-  if (isUnderSystemFolder(fs::absolute(folder, ignored)) ||
-      isUnderSystemFolder(fs::weakly_canonical(folder, ignored)))
+  if (amongSystemDevices(folder))
     refuse("lies among the system's devices (/dev, /proc); give the name of a folder");
+  std::error_code ignored;
   const fs::file_status status = fs::status(folder, ignored);  // through symbolic links
   if (fs::exists(status) && !fs::is_directory(status))
     refuse("is a file, not a folder; give the name of a folder to write the results in");
@@ -55,8 +61,7 @@ void requireOutputFile(const fs::path& file, const std::string& option) {
   };
   if (file.empty() || file.filename().empty()) refuse("give the name of a file to write");
   std::error_code ignored;
-  if (isUnderSystemFolder(fs::absolute(file, ignored)) ||
-      isUnderSystemFolder(fs::weakly_canonical(file, ignored)))
+  if (amongSystemDevices(file))
     refuse(
         "lies among the system's devices (/dev, /proc), which writing would replace; give the "
         "name of a file");
