@@ -16,9 +16,9 @@
 #include "BenchRunner.h"
 #include "BenchSpec.h"
 #include "Commands.h"
+#include "NumberOption.h"
 #include "OmplBenchmarkLog.h"
 #include "OutputFile.h"
-#include "SeedOption.h"
 #include "kautham/core/InputError.h"
 #include "kautham/planners/PluginLoader.h"
 
@@ -239,15 +239,21 @@ void addSpecOptions(CLI::App& command, BenchOptions& options) {
       ->allow_extra_args(false);
   command.add_option("--set", s.sets, "PARAM=VALUE for every configuration (repeatable)")
       ->allow_extra_args(false);
-  command.add_option("--runs", s.runs, "runs per problem and configuration (default 10)");
+  command.add_option("--runs", s.runs, "runs per problem and configuration (default 10)")
+      ->check(wholeNumberRange(1, std::numeric_limits<std::uint32_t>::max()));
   command.add_option("--seed", s.seed, "run r plans and validates with seed SEED + r (default 1)")
       ->check(seedRange(std::numeric_limits<std::uint32_t>::max()));
-  command.add_option("--time", s.time, "planning time limit in seconds (default: the problem's)");
-  command.add_option("--threads", s.threads,
-                     "worker processes for p-KPIECE's particles and whole-plan verification in "
-                     "each run; the other planners run in one thread and ignore it");
-  command.add_option("--validate", s.validate,
-                     "execute each solved plan this many times under uncertainty (default 0)");
+  command.add_option("--time", s.time, "planning time limit in seconds (default: the problem's)")
+      ->check(numberRange(0.01, 86400.0));
+  command
+      .add_option("--threads", s.threads,
+                  "worker processes for p-KPIECE's particles and whole-plan verification in "
+                  "each run; the other planners run in one thread and ignore it")
+      ->check(wholeNumberRange(1, 64));
+  command
+      .add_option("--validate", s.validate,
+                  "execute each solved plan this many times under uncertainty (default 0)")
+      ->check(wholeNumberRange(0, 100000000));
   command.add_option("--model-dir", s.modelDirs, "extra folder to search for models")
       ->check(CLI::ExistingDirectory)
       ->allow_extra_args(false);
@@ -266,7 +272,7 @@ void addBenchCommand(CLI::App& app, int& exitCode) {
   addSpecOptions(*command, *options);
   command->add_option("-o,--output", options->output, "output folder")->capture_default_str();
   command->add_option("--jobs", options->jobs, "runs at once")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
+      ->check(wholeNumberRange(1, 256))
       ->capture_default_str();
   command
       ->add_option("--shard", options->shard,

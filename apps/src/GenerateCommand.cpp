@@ -10,8 +10,8 @@
 
 #include "ClutterGenerator.h"
 #include "Commands.h"
+#include "NumberOption.h"
 #include "OutputFile.h"
-#include "SeedOption.h"
 #include "SideGraspClutter.h"
 
 namespace kautham::apps {
@@ -76,7 +76,7 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember(clutterRobots()));
   clutter->add_option("-n,--objects", options->clutter.objects, "number of movable cans")
       ->required()
-      ->check(CLI::Range(0, kMaxClutterObjects));
+      ->check(wholeNumberRange(0, kMaxClutterObjects));
   clutter->add_option("-s,--seed", options->clutter.seed, "random seed: same seed, same scene")
       ->capture_default_str()
       ->check(seedRange(std::numeric_limits<std::uint64_t>::max()));
@@ -85,7 +85,7 @@ void addGenerateCommand(CLI::App& app, int& exitCode) {
       ->check(CLI::IsMember({"glass"}));
   clutter->add_option("-g,--gap", options->clutter.gap, "least distance between two objects (m)")
       ->capture_default_str()
-      ->check(CLI::Range(0.0, 0.2));
+      ->check(numberRange(0.0, 0.2));
   clutter
       ->add_option("-l,--layout", options->clutter.layout,
                    "side: the dense suite, a side pre-grasp (kuka_clutter_N); top: the "

@@ -16,13 +16,13 @@
 
 #include "Commands.h"
 #include "KauthamPlanners.h"
+#include "NumberOption.h"
 #include "OutputFile.h"
 #include "PackagePathOption.h"
 #include "ParameterOverrides.h"
 #include "PlanFile.h"
 #include "PlanViewer.h"
 #include "PlannerFromFile.h"
-#include "SeedOption.h"
 #include "StartCheck.h"
 #include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
@@ -233,11 +233,13 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
                    "(this problem's scene and query), as a Kautham benchmark file does")
       ->excludes(planner);
   command->add_option("--time", options->time, "planning time limit in seconds")
-      ->check(CLI::Range(0.01, 86400.0));
-  command->add_option("--threads", options->threads,
-                      "worker processes for p-KPIECE's particles and its whole-plan verification, "
-                      "same as --set threads=N (the plan does not depend on it); the other "
-                      "planners run in one thread and ignore it");
+      ->check(numberRange(0.01, 86400.0));
+  command
+      ->add_option("--threads", options->threads,
+                   "worker processes for p-KPIECE's particles and its whole-plan verification, "
+                   "same as --set threads=N (the plan does not depend on it); the other "
+                   "planners run in one thread and ignore it")
+      ->check(wholeNumberRange(1, 64));
   command->add_option("--seed", options->seed, "random seed (0: pick one)")
       ->capture_default_str()
       ->check(seedRange(std::numeric_limits<std::uint32_t>::max()));
@@ -261,7 +263,8 @@ void addPlanCommand(CLI::App& app, int& exitCode) {
       ->allow_extra_args(false);
   addPackagePathOption(*command, options->packagePaths);
   command->add_option("--query", options->query, "index of the query to plan")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumberRange(0, std::numeric_limits<std::uint32_t>::max()));
   command->callback(
       [options, &exitCode] { exitCode = runReportingErrors([&] { return runPlan(*options); }); });
 }

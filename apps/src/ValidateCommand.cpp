@@ -20,11 +20,11 @@
 
 #include "Commands.h"
 #include "JsonFileText.h"
+#include "NumberOption.h"
 #include "OutputFile.h"
 #include "PackagePathOption.h"
 #include "PlanControlCheck.h"
 #include "PlanFile.h"
-#include "SeedOption.h"
 #include "kautham/core/PhysicsOverrides.h"
 #include "kautham/core/ProblemLoader.h"
 #include "kautham/core/Random.h"
@@ -695,7 +695,7 @@ void addValidateCommand(CLI::App& app, int& exitCode) {
       ->required();
   command->add_option("--runs", options->runs, "number of sampled executions")
       ->required()
-      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+      ->check(wholeNumberRange(1, 100000000));
   command->add_option("--seed", options->seed, "random seed; run i draws from its own stream")
       ->capture_default_str()
       ->check(seedRange(std::numeric_limits<std::uint64_t>::max()));

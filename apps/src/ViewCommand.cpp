@@ -1,10 +1,14 @@
 // `kautham view PLAN -o plan.html`: the plan file as an animated, self-contained HTML page.
 // `kautham view PROBLEM.xml`: the problem's start scene in the same page, to see what was written.
 
+#include <cstdint>
+#include <limits>
+
 #include <fmt/format.h>
 
 #include "Commands.h"
 #include "KauthamPlanners.h"
+#include "NumberOption.h"
 #include "OutputFile.h"
 #include "PackagePathOption.h"
 #include "PlanFile.h"
@@ -112,7 +116,8 @@ void addViewCommand(CLI::App& app, int& exitCode) {
       ->allow_extra_args(false);
   addPackagePathOption(*command, options->packagePaths);
   command->add_option("--query", options->query, "the query whose start a problem file shows")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(wholeNumberRange(0, std::numeric_limits<std::uint32_t>::max()));
   command->add_option(
       "-o,--output", options->output,
       "HTML file to write (default: the plan or problem file with extension .html)");

@@ -155,13 +155,24 @@ class ProblemReader {
   }
 
   fs::path findModel(const XMLElement& e, const std::string& relative) const {
-    if (fs::path(relative).is_absolute()) return relative;
-    for (const fs::path& dir : modelDirs_) {
-      std::error_code ignored;
-      if (fs::is_regular_file(dir / relative, ignored)) return fs::weakly_canonical(dir / relative);
-    }
+    const bool absolute = fs::path(relative).is_absolute();
+    std::vector<fs::path> candidates;
+    if (absolute)
+      candidates.push_back(relative);
+    else
+      for (const fs::path& dir : modelDirs_) candidates.push_back(dir / relative);
+    std::error_code ignored;
+    for (const fs::path& candidate : candidates)
+      if (fs::is_regular_file(candidate, ignored))
+        return absolute ? candidate : fs::weakly_canonical(candidate);
     std::string searched;
-    for (const fs::path& dir : modelDirs_) searched += "\n  " + (dir / relative).string();
+    for (const fs::path& candidate : candidates) {
+      if (fs::is_directory(candidate, ignored))
+        xml_.fail(e, "model file '" + relative + "' is a folder ('" + candidate.string() +
+                         "'), not a file: name the model file inside it (a .urdf, or an "
+                         "<Environment>'s .bt)");
+      searched += "\n  " + candidate.string();
+    }
     xml_.fail(e, "model file '" + relative + "' not found; searched:" + searched +
                      "\n(add a folder with --model-dir)");
   }

@@ -171,6 +171,44 @@ TEST_F(PlanCommandTest, ASeedOutOfRangeSaysWhatASeedMustBe) {
   EXPECT_FALSE(fs::exists(folder / "g.xml"));
 }
 
+TEST_F(PlanCommandTest, AWordOrANegativeWhereANumberBelongsSaysWhatTheOptionTakes) {
+  // CLI11 alone said "Value abc not in range" for a word, and wrapped --query -1 round to
+  // 18446744073709551615 before the command named the problem's queries.
+  const std::pair<std::string, std::string> cases[] = {
+      {"plan problems/pusher_free.xml --time abc",
+       "--time: expected a number in [0.01, 86400], got 'abc'"},
+      {"plan problems/pusher_free.xml --time nan",
+       "--time: expected a number in [0.01, 86400], got 'nan'"},
+      {"plan problems/pusher_free.xml --query -1",
+       "--query: expected an integer in [0, 4294967295], got '-1'"},
+      {"view problems/pusher_free.xml --query x -o " + (folder / "v.html").string(),
+       "--query: expected an integer in [0, 4294967295], got 'x'"},
+      {"validate problems/pusher_free.xml no_plan.json --runs many",
+       "--runs: expected an integer in [1, 100000000], got 'many'"},
+      {"generate clutter -r kuka -n ten -o " + (folder / "g.xml").string(),
+       "--objects: expected an integer in [0, 60], got 'ten'"},
+      {"generate clutter -r kuka -n 3 --gap 1cm -o " + (folder / "g.xml").string(),
+       "--gap: expected a number in [0, 0.2], got '1cm'"},
+      {"plan problems/pusher_free.xml --threads two",
+       "--threads: expected an integer in [1, 64], got 'two'"},
+      {"bench problems/pusher_free.xml --planner RRT --runs abc -o " + (folder / "b").string(),
+       "--runs: expected an integer in [1, 4294967295], got 'abc'"},
+      {"bench problems/pusher_free.xml --planner RRT --time 1min -o " + (folder / "b").string(),
+       "--time: expected a number in [0.01, 86400], got '1min'"},
+      {"bench problems/pusher_free.xml --planner RRT --jobs 0 -o " + (folder / "b").string(),
+       "--jobs: expected an integer in [1, 256], got '0'"},
+  };
+  for (const auto& [command, message] : cases) {
+    const CommandRun run = kautham(command);
+    EXPECT_EQ(run.exitCode, 2) << command << "\n" << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << command << "\n" << run.output;
+    EXPECT_EQ(run.output.find("not in range"), std::string::npos) << run.output;
+  }
+  EXPECT_FALSE(fs::exists(folder / "g.xml"));
+  EXPECT_FALSE(fs::exists(folder / "v.html"));
+  EXPECT_FALSE(fs::exists(folder / "b"));
+}
+
 TEST_F(PlanCommandTest, ASetValueBeyondADoubleSaysOutOfRange) {
   for (const char* set : {"time_limit=1e400", "goal_bias=-1e400", "propagation_step_size=2e308"}) {
     const CommandRun run = kautham(std::string("plan problems/pusher_free.xml --set ") + set);

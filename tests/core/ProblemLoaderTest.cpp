@@ -535,6 +535,7 @@ const MalformedCase kMalformedCases[] = {
      "'Max Contacts' must be one number in [1, 64]"},
     {"unknown_role", nullptr, 11, "unknown role 'goal'; expected fixed, movable or target"},
     {"missing_model", nullptr, 7, "model file 'objects/no_such_table.urdf' not found"},
+    {"model_is_a_folder", nullptr, 4, "model file 'robots' is a folder ('"},
     {"urdf_malformed_xml", "broken.urdf", 5, "malformed XML: <collision> is not closed"},
     {"urdf_stray_end_tag", "stray_end_tag.urdf", 11,
      "the file goes on after </robot> with '</robot>': a file holds one <robot>"},
