@@ -60,6 +60,7 @@ ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion
   job.contact = context_.world().contactParameters();
   job.targetReference = context_.validityChecker().targetStart();
   job.tiltLimit = nominalTiltLimit_;
+  job.targetDriftLimit = nominalTargetDriftLimit_;
   for (unsigned s = 1; s <= motion.steps; ++s) job.recordAfter.push_back(s);
   job.goalStop = throughGoal ? GoalStop::Leaving : GoalStop::Entering;
   return job;
@@ -70,9 +71,12 @@ std::pair<physics::Violation, std::optional<std::size_t>> MotionEvaluator::broke
   // Judged against the job's own target reference, as the run judged it.
   const physics::WorldValidityChecker& checker = context_.validityChecker();
   const physics::Violation violation = checker.check(state, job.targetReference);
-  if (violation == physics::Violation::None)  // within the scene's rules, not the job's margin
+  if (violation == physics::Violation::None) {  // within the scene's rules, not the job's margins
     if (const auto tilted = runner_.tiltedBeyond(state, job.tiltLimit))
       return {physics::Violation::ObjectTilted, tilted};
+    if (runner_.targetDriftedBeyond(state, job.targetReference, job.targetDriftLimit))
+      return {physics::Violation::TargetMoved, checker.targetBody()};
+  }
   return {violation, physics::isObjectRule(violation)
                          ? checker.offendingObject(state, job.targetReference, std::nullopt)
                          : std::nullopt};

@@ -81,6 +81,9 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
   specs_.approximateSolutions = true;
   if (settings.tiltMargin < 1.0)
     evaluator_.setNominalTiltLimit(settings.tiltMargin * context.problem().interaction.maxTilt);
+  if (settings.targetMargin < 1.0)
+    evaluator_.setNominalTargetDriftLimit(settings.targetMargin *
+                                          context.problem().interaction.targetTolerance);
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
   addPlannerProgressProperty("cells INTEGER", [this] { return std::to_string(cells_.size()); });

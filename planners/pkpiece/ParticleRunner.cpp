@@ -49,6 +49,13 @@ std::optional<std::size_t> ParticleRunner::tiltedBeyond(const double* state, dou
   return std::nullopt;
 }
 
+bool ParticleRunner::targetDriftedBeyond(const double* state, const Eigen::Vector3d& reference,
+                                         double limit) const {
+  const std::optional<std::size_t> target = context_.validityChecker().targetBody();
+  if (limit <= 0.0 || !target) return false;
+  return (physics::WorldLayout::position(state, *target) - reference).norm() > limit;
+}
+
 ParticleResult ParticleRunner::run(const ParticleJob& job) {
   context_.world().setContactParameters(job.contact);
   ParticleResult result;
@@ -59,7 +66,8 @@ ParticleResult ParticleRunner::run(const ParticleJob& job) {
   bool lastRecorded = false;
   for (unsigned i = 0; i < job.steps && result.valid; ++i) {
     result.valid = step(result.end.data(), job.control.data(), next.data(), job.targetReference) &&
-                   !tiltedBeyond(next.data(), job.tiltLimit);
+                   !tiltedBeyond(next.data(), job.tiltLimit) &&
+                   !targetDriftedBeyond(next.data(), job.targetReference, job.targetDriftLimit);
     bool stop = false;
     if (result.valid && job.goalStop != GoalStop::Ignore) {
       const bool inGoal = context_.goal().reached(next.data());

@@ -29,14 +29,15 @@ constexpr unsigned kJobsPerWorker = 2;
 
 // Messages. A job starts with its kind (uint64).
 // - A particle job is [index, steps, goal stop, n] (uint64), contact (3 doubles), target
-//   reference (3), tilt limit (1), start state, control, then its n record steps (uint64).
+//   reference (3), tilt limit (1), target drift limit (1), start state, control, then its n
+//   record steps (uint64).
 // - An execution job is [index, seed, m] (uint64), then m controls, each [steps, gripper
 //   action, object + 1, k] (uint64) and its k values (doubles).
 // A result, of either, is [index, valid, goal from, propagations, physics steps, n] (uint64),
 // end state, then its n recorded states (an execution: valid is "reached the goal", n = 0).
 // Each is read as its fixed part, then the items that part announces.
 enum class JobKind : std::uint64_t { Particle = 0, Execution = 1 };
-constexpr std::size_t kJobHeader = 4 * sizeof(std::uint64_t) + 7 * sizeof(double);
+constexpr std::size_t kJobHeader = 4 * sizeof(std::uint64_t) + 8 * sizeof(double);
 constexpr std::size_t kExecutionHeader = 3 * sizeof(std::uint64_t);
 constexpr std::size_t kControlHeader = 4 * sizeof(std::uint64_t);
 constexpr std::size_t kResultHeader = 6 * sizeof(std::uint64_t);
@@ -158,6 +159,7 @@ bool ParticleWorkers::serveParticle(int fd) {
   job.contact.cfm = unpack.real();
   for (int k = 0; k < 3; ++k) job.targetReference[k] = unpack.real();
   job.tiltLimit = unpack.real();
+  job.targetDriftLimit = unpack.real();
   unpack.get(job.start.data(), stateSize * sizeof(double));
   unpack.get(job.control.data(), controlSize * sizeof(double));
   if (records > kMaxRecords) return false;
@@ -221,6 +223,7 @@ void ParticleWorkers::send(Worker& worker, std::size_t index, const ParticleJob&
   pack.put(job.contact.cfm);
   for (int k = 0; k < 3; ++k) pack.put(job.targetReference[k]);
   pack.put(job.tiltLimit);
+  pack.put(job.targetDriftLimit);
   pack.put(job.start.data(), runner_.stateSize() * sizeof(double));
   pack.put(job.control.data(), runner_.controlSize() * sizeof(double));
   for (unsigned step : job.recordAfter) pack.put(std::uint64_t{step});

@@ -93,6 +93,9 @@ class MotionEvaluator {
   /// broken (tilt_margin: the plan keeps away from tipping cans); 0: the scene's maxTilt alone.
   /// Particles and whole-plan executions judge by the scene's rules.
   void setNominalTiltLimit(double radians) { nominalTiltLimit_ = radians; }
+  /// Nominal runs treat the target drifted beyond `metres` as the scene's target rule broken
+  /// (target_margin: the plan keeps its pushes off the target); 0: the scene's tolerance alone.
+  void setNominalTargetDriftLimit(double metres) { nominalTargetDriftLimit_ = metres; }
 
   /// Spreads particle jobs over `threads` processes: this one and threads - 1 forked workers
   /// (ParticleWorkers). 1: every job runs inline. Workers from an earlier call are reaped.
@@ -163,6 +166,7 @@ class MotionEvaluator {
   physics::UncertaintySampler sampler_;
   double maxDisplacement_;
   double nominalTiltLimit_ = 0.0;
+  double nominalTargetDriftLimit_ = 0.0;
   std::vector<std::size_t> objectBodies_;
   ParticleRunner runner_;
   std::unique_ptr<ParticleWorkers> workers_;  ///< none: jobs run inline

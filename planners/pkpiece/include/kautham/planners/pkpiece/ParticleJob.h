@@ -30,6 +30,10 @@ struct ParticleJob {
   /// A tighter limit than the scene's maxTilt for the movable objects (rad; 0: the scene's
   /// alone): a state where one tilts further is invalid (tilt_margin, nominal runs only).
   double tiltLimit = 0.0;
+  /// A tighter limit than the scene's targetTolerance for the target's drift from
+  /// targetReference (m; 0: the scene's alone): a state where it drifts further is invalid
+  /// (target_margin, nominal runs only).
+  double targetDriftLimit = 0.0;
 };
 
 /// What a particle motion gave.

@@ -31,13 +31,18 @@ class ParticleRunner {
             const Eigen::Vector3d& targetReference);
   /// Sets the job's contact parameters (they stay set: the caller restores its own) and steps
   /// the control from the start state until the first invalid state or `steps` steps; with
-  /// the job's tiltLimit, a movable object tilted beyond it makes a state invalid too. The
+  /// the job's tiltLimit, a movable object tilted beyond it makes a state invalid too, and
+  /// with its targetDriftLimit a target drifted beyond it. The
   /// state the run ends in is judged with its own contacts, as an execution's last state is
   /// (physics::addFinalContacts): a run that ends with the robot on the table or the target
   /// is invalid there.
   ParticleResult run(const ParticleJob& job);
   /// The first movable object tilted more than `limit` (rad) in `state`; none when limit <= 0.
   std::optional<std::size_t> tiltedBeyond(const double* state, double limit) const;
+  /// Whether the target has drifted more than `limit` (m) from `reference` in `state`; never
+  /// when limit <= 0 or the scene has no target.
+  bool targetDriftedBeyond(const double* state, const Eigen::Vector3d& reference,
+                           double limit) const;
   /// Executes the whole plan `controls` once in a world sampled with the stream `seed`, as
   /// `kautham validate` does (physics::execute with a std::mt19937_64 seeded by it): the same
   /// run in any process with a copy of the context.
