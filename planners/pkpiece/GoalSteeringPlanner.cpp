@@ -82,11 +82,7 @@ class GoalSteeringPlanner : public ompl::base::Planner, public FailureReporter {
           std::to_string(before) + ", or set push_angle_generation=0");
     steering_.setTree(chosen.tree);
     specs_.approximateSolutions = true;
-    if (settings_.tiltMargin < 1.0)
-      evaluator_.setNominalTiltLimit(settings_.tiltMargin * context.problem().interaction.maxTilt);
-    if (settings_.targetMargin < 1.0)
-      evaluator_.setNominalTargetDriftLimit(settings_.targetMargin *
-                                            context.problem().interaction.targetTolerance);
+    evaluator_.setNominalMargins(settings_.tiltMargin, settings_.targetMargin);
     addPlannerProgressProperty("motions INTEGER", [this] { return std::to_string(motions_); });
     // Why the following ended, unless at the goal or at a broken rule (the candidate failure):
     // the steering had no motion to give, or it stalled (or used up its motions).

@@ -51,6 +51,13 @@ std::vector<ExecutionOutcome> MotionEvaluator::runExecutions(
   return outcomes;
 }
 
+void MotionEvaluator::setNominalMargins(double tiltMargin, double targetMargin) {
+  // 0 in a job: the scene's own limit, which the validity checker applies anyway.
+  const core::InteractionConstraints& scene = context_.problem().interaction;
+  nominalTiltLimit_ = tiltMargin < 1.0 ? tiltMargin * scene.maxTilt : 0.0;
+  nominalTargetDriftLimit_ = targetMargin < 1.0 ? targetMargin * scene.targetTolerance : 0.0;
+}
+
 ParticleJob MotionEvaluator::nominalJob(const double* start, const NominalMotion& motion,
                                         bool throughGoal) const {
   ParticleJob job;

@@ -79,11 +79,7 @@ PKpiece::PKpiece(physics::PlanningContext& context, const PKpieceSettings& setti
       verifier_(evaluator_, streamBase_ ^ 0x5645524946590000ULL),
       treeSeedBase_(streamBase_ ^ 0x5452454553000000ULL) {
   specs_.approximateSolutions = true;
-  if (settings.tiltMargin < 1.0)
-    evaluator_.setNominalTiltLimit(settings.tiltMargin * context.problem().interaction.maxTilt);
-  if (settings.targetMargin < 1.0)
-    evaluator_.setNominalTargetDriftLimit(settings.targetMargin *
-                                          context.problem().interaction.targetTolerance);
+  evaluator_.setNominalMargins(settings.tiltMargin, settings.targetMargin);
   scratch_ = si_->allocState();
   grid_.onCellUpdate(&PKpiece::computeImportance, this);
   addPlannerProgressProperty("cells INTEGER", [this] { return std::to_string(cells_.size()); });

@@ -89,13 +89,12 @@ class MotionEvaluator {
   std::vector<NominalRun> runNominals(const double* start,
                                       const std::vector<NominalMotion>& motions, bool throughGoal);
 
-  /// Nominal runs treat a movable object tilted beyond `radians` as the scene's tilt rule
-  /// broken (tilt_margin: the plan keeps away from tipping cans); 0: the scene's maxTilt alone.
-  /// Particles and whole-plan executions judge by the scene's rules.
-  void setNominalTiltLimit(double radians) { nominalTiltLimit_ = radians; }
-  /// Nominal runs treat the target drifted beyond `metres` as the scene's target rule broken
-  /// (target_margin: the plan keeps its pushes off the target); 0: the scene's tolerance alone.
-  void setNominalTargetDriftLimit(double metres) { nominalTargetDriftLimit_ = metres; }
+  /// Nominal runs keep every movable object within `tiltMargin` times the scene's maxTilt
+  /// (tilt_margin: the plan keeps away from tipping cans) and the target within `targetMargin`
+  /// times its targetTolerance of its start (target_margin: the pushes keep off the target): a
+  /// state beyond either breaks the scene's rule. 1: the scene's limit. Particles and
+  /// whole-plan executions judge by the scene's rules.
+  void setNominalMargins(double tiltMargin, double targetMargin);
 
   /// Spreads particle jobs over `threads` processes: this one and threads - 1 forked workers
   /// (ParticleWorkers). 1: every job runs inline. Workers from an earlier call are reaped.
